@@ -1,0 +1,1 @@
+// Implemented by the MuJoCo backend work (mujoco_backend.h).

@@ -1,0 +1,19 @@
+#include "backends/backend.h"
+
+namespace efc {
+
+// Each target defines its factory next to its emitter.
+const Backend* mujoco_backend();
+
+const std::vector<const Backend*>& all_backends() {
+  static const std::vector<const Backend*> table = {mujoco_backend()};
+  return table;
+}
+
+const Backend* find_backend(const std::string& name) {
+  for (const Backend* b : all_backends())
+    if (name == b->name()) return b;
+  return nullptr;
+}
+
+}  // namespace efc

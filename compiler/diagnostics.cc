@@ -1,0 +1,76 @@
+#include "compiler/diagnostics.h"
+
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+
+namespace efc {
+
+void Diagnostics::error(std::string code, std::string file, int line, int col,
+                        std::string pointer, std::string message, std::string hint) {
+  items_.push_back({Severity::Error, std::move(code), std::move(file), line, col,
+                    std::move(pointer), std::move(message), std::move(hint)});
+}
+
+void Diagnostics::warning(std::string code, std::string file, int line, int col,
+                          std::string pointer, std::string message, std::string hint) {
+  items_.push_back({Severity::Warning, std::move(code), std::move(file), line, col,
+                    std::move(pointer), std::move(message), std::move(hint)});
+}
+
+bool Diagnostics::has_errors() const { return error_count() > 0; }
+
+size_t Diagnostics::error_count() const {
+  size_t n = 0;
+  for (const auto& d : items_) n += d.severity == Severity::Error;
+  return n;
+}
+
+size_t Diagnostics::warning_count() const {
+  size_t n = 0;
+  for (const auto& d : items_) n += d.severity == Severity::Warning;
+  return n;
+}
+
+static const char* severity_name(Severity s) {
+  switch (s) {
+    case Severity::Error: return "error";
+    case Severity::Warning: return "warning";
+    case Severity::Note: return "note";
+  }
+  return "error";
+}
+
+std::string format_text(const Diagnostic& d) {
+  std::string out = d.file.empty() ? std::string("efc") : d.file;
+  if (d.line > 0) {
+    out += ":" + std::to_string(d.line);
+    if (d.col > 0) out += ":" + std::to_string(d.col);
+  }
+  out += ": ";
+  out += severity_name(d.severity);
+  if (!d.code.empty()) out += "[" + d.code + "]";
+  out += ": " + d.message + "\n";
+  if (!d.pointer.empty()) out += "  at " + d.pointer + "\n";
+  if (!d.hint.empty()) out += "  hint: " + d.hint + "\n";
+  return out;
+}
+
+std::string format_json(const Diagnostic& d) {
+  nlohmann::json j = {{"severity", severity_name(d.severity)},
+                      {"code", d.code},
+                      {"file", d.file},
+                      {"line", d.line},
+                      {"column", d.col},
+                      {"pointer", d.pointer},
+                      {"message", d.message}};
+  if (!d.hint.empty()) j["hint"] = d.hint;
+  // Replace invalid UTF-8 rather than throw: messages may quote user bytes.
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+void Diagnostics::print(std::ostream& os, bool json_lines) const {
+  for (const auto& d : items_) os << (json_lines ? format_json(d) : format_text(d));
+}
+
+}  // namespace efc

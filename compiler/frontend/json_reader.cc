@@ -1,0 +1,1 @@
+// Implemented by the front-end work (json_reader.h).

@@ -1,0 +1,38 @@
+// The JSON front-end: reads a spec v1 document into the IR, recording the line
+// and column of every value (nlohmann::json::sax_parse through a counting
+// input adapter) so every diagnostic points into the file the user wrote.
+//
+// It checks the document's shape: syntax, types, required and unknown keys
+// (`x-` keys are kept), names, enum values, finite numbers, and that file
+// paths stay inside the spec's folder. Cross-references and value rules are
+// check.h's job.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "compiler/diagnostics.h"
+#include "compiler/ir.h"
+
+namespace efc {
+
+struct ReadOptions {
+  bool allow_absolute_paths = false;
+  size_t max_depth = 256;  // deeper nesting is an error, never a stack overflow
+};
+
+// Returns the object when the document has the right shape (it may still have
+// errors for check() to find); nullopt when it cannot be used. Errors go to diags.
+std::optional<Object> read_json_text(std::string_view text, const std::string& file,
+                                     const std::string& base_dir, const ReadOptions& opts,
+                                     Diagnostics& diags);
+
+// Reads a file. Sets *io_error (exit code 2) when the file cannot be read.
+std::optional<Object> read_json_file(const std::string& path, const ReadOptions& opts,
+                                     Diagnostics& diags, bool* io_error);
+
+// True when `name` matches ^[A-Za-z_][A-Za-z0-9_]{0,63}$ (names reach XML, C++, Python).
+bool is_valid_name(std::string_view name);
+
+}  // namespace efc

@@ -1,0 +1,1 @@
+// Implemented by the MuJoCo backend work (efc_mujoco.h).
