@@ -102,8 +102,10 @@ int effect_step(const EffectParams& p, double s_E, double dt, EffectState* st) {
     case kFluid: {
       st->output = s_E;
       const double want = droplet_rate(p, s_E) * dt + st->emit_remainder;
-      const double n = std::floor(want);
-      st->emit_remainder = want - n;
+      // The epsilon keeps a droplet from being lost to rounding when the
+      // accumulated remainder lands a hair below a whole number.
+      const double n = std::floor(want + 1e-9);
+      st->emit_remainder = want - n > 0 ? want - n : 0;
       st->emitted += static_cast<long>(n);
       return static_cast<int>(n);
     }

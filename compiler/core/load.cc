@@ -1,1 +1,29 @@
-// load.h
+#include "compiler/core/load.h"
+
+#include "compiler/core/resolve.h"
+#include "compiler/frontend/check.h"
+#include "compiler/frontend/json_reader.h"
+
+namespace efc {
+
+std::optional<Object> load_spec(const std::string& path, const LoadOptions& opts,
+                                Diagnostics& diags, bool* io_error) {
+  if (io_error) *io_error = false;
+  ReadOptions read_opts;
+  read_opts.allow_absolute_paths = opts.allow_absolute_paths;
+  bool io = false;
+  std::optional<Object> obj = read_json_file(path, read_opts, diags, &io);
+  if (io_error) *io_error = io;
+  if (!obj) return std::nullopt;
+  // Shape errors and structural errors are reported together: the checks run
+  // on whatever the reader could build, so one run shows every problem.
+  check_structure(*obj, diags);
+  if (diags.has_errors()) return std::nullopt;
+  resolve(*obj, diags);
+  if (diags.has_errors()) return std::nullopt;
+  check_resolved(*obj, diags);
+  if (diags.has_errors()) return std::nullopt;
+  return obj;
+}
+
+}  // namespace efc

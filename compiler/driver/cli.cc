@@ -1,0 +1,140 @@
+// Argument parsing (CLI11) and dispatch.
+#include <CLI/CLI.hpp>
+
+#include <unistd.h>
+
+#include <iostream>
+
+#include "backends/backend.h"
+#include "compiler/core/load.h"
+#include "compiler/driver/commands.h"
+#include "harness/play.h"
+
+namespace efc {
+namespace {
+
+void add_common(CLI::App* cmd, CommonOptions* common, std::string* format) {
+  cmd->add_option("--diagnostics-format", *format, "text (default) or json (one JSON object per line)")
+      ->check(CLI::IsMember({"text", "json"}));
+  cmd->add_flag("--allow-absolute-paths", common->allow_absolute_paths,
+                "let mesh paths be absolute (they may never leave the spec's folder otherwise)");
+}
+
+int cmd_play(const std::string& spec, const std::string& profile_text, double duration, double dt,
+             const std::string& csv, const std::string& render, const std::string& plot, double fps,
+             const CommonOptions& common) {
+  Diagnostics diags;
+  auto finish = [&](int rc) {
+    diags.print(std::cerr, common.json_diagnostics);
+    return rc;
+  };
+  if (!(duration > 0) || duration > 1e5) {
+    std::cerr << "efc play: --duration must be a positive number of seconds\n";
+    return 2;
+  }
+  if (!(dt > 0) || dt > 0.1 || dt > duration) {
+    std::cerr << "efc play: --dt must be in (0, 0.1] seconds and not exceed --duration\n";
+    return 2;
+  }
+  if (duration / dt > 5e7) {
+    std::cerr << "efc play: --duration / --dt is more than 50 million steps\n";
+    return 2;
+  }
+  PlayOptions opts;
+  std::string error;
+  int line = 0;
+  bool io = false;
+  if (!parse_profile(profile_text, &opts.profile, &error, &line, &io)) {
+    if (io) {
+      diags.error("E0001", opts.profile.csv_path.empty() ? profile_text : opts.profile.csv_path, 0,
+                  0, "", error);
+      return finish(2);
+    }
+    if (line > 0) {
+      diags.error("E0903", profile_text.substr(4), line, 1, "", error);
+      return finish(1);
+    }
+    std::cerr << "efc play: " << error << "\n";
+    return 2;
+  }
+  LoadOptions load_opts;
+  load_opts.allow_absolute_paths = common.allow_absolute_paths;
+  bool io_error = false;
+  std::optional<Object> obj = load_spec(spec, load_opts, diags, &io_error);
+  if (!obj) return finish(io_error ? 2 : 1);
+  opts.duration = duration;
+  opts.dt = dt;
+  opts.csv_path = csv;
+  opts.render_dir = render;
+  opts.plot_path = plot;
+  opts.render_fps = fps;
+  opts.progress = isatty(2) && duration / dt > 20000;
+  PlayLog log;
+  const int rc = play(*obj, opts, diags, &log);
+  if (rc == 0 && !render.empty())
+    std::cerr << "play: wrote " << log.frames_written << " frames to " << render << "\n";
+  return finish(rc);
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"efc: a compiler for interactive 3D objects (function templates)", "efc"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "efc 0.1.0");
+
+  CommonOptions common;
+  std::string format = "text";
+
+  std::vector<std::string> specs;
+  bool dump_ir = false;
+  CLI::App* check = app.add_subcommand("check", "read and type-check specs; write nothing");
+  check->add_option("SPEC", specs, "spec files (.json)")->required();
+  check->add_flag("--dump-ir", dump_ir, "print the resolved IR (every default filled) as JSON");
+  add_common(check, &common, &format);
+
+  std::vector<std::string> targets;
+  std::string out_dir;
+  std::string target_help = "target: all";
+  for (const Backend* b : all_backends()) target_help += std::string(", ") + b->name();
+  CLI::App* compile = app.add_subcommand("compile", "compile specs for simulators");
+  compile->add_option("SPEC", specs, "spec files (.json)")->required();
+  compile->add_option("--target,-t", targets, target_help)->required();
+  compile->add_option("-o,--output", out_dir, "output folder")->required();
+  add_common(compile, &common, &format);
+
+  std::string spec, profile, csv, render, plot;
+  double duration = 0, dt = 0.002, fps = 30;
+  CLI::App* playc = app.add_subcommand("play", "play a spec in MuJoCo and log its templates");
+  playc->add_option("SPEC", spec, "spec file")->required();
+  playc->add_option("--profile", profile, "ramp, sweep, press:N, hold:V (lo/hi), csv:FILE")->required();
+  playc->add_option("--duration", duration, "seconds")->required();
+  playc->add_option("--dt", dt, "timestep in seconds (default 0.002)");
+  playc->add_option("--csv", csv, "write the log: t, F.s_R, F.s_E, F.measured");
+  playc->add_option("--render", render, "write PNG frames from an offscreen camera into DIR");
+  playc->add_option("--fps", fps, "frames per second for --render (default 30)");
+  playc->add_option("--plot", plot, "draw s_R, s_E and measured over time as SVG");
+  add_common(playc, &common, &format);
+
+  std::string code;
+  bool list = false;
+  CLI::App* explain = app.add_subcommand("explain", "explain a diagnostic code (e.g. E0203)");
+  explain->add_option("CODE", code, "the code");
+  explain->add_flag("--list", list, "list every code");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  }
+  common.json_diagnostics = format == "json";
+
+  if (*check) return cmd_check(specs, dump_ir, common);
+  if (*compile) return cmd_compile(specs, targets, out_dir, common);
+  if (*playc) return cmd_play(spec, profile, duration, dt, csv, render, plot, fps, common);
+  if (*explain) return cmd_explain(code, list);
+  return 2;
+}
+
+}  // namespace efc

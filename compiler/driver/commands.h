@@ -1,0 +1,21 @@
+// The efc subcommands. Each returns the process exit code.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace efc {
+
+struct CommonOptions {
+  bool json_diagnostics = false;  // --diagnostics-format json
+  bool allow_absolute_paths = false;
+};
+
+int run_cli(int argc, char** argv);
+
+int cmd_check(const std::vector<std::string>& specs, bool dump_ir, const CommonOptions& common);
+int cmd_compile(const std::vector<std::string>& specs, const std::vector<std::string>& targets,
+                const std::string& out_dir, const CommonOptions& common);
+int cmd_explain(const std::string& code, bool list);
+
+}  // namespace efc

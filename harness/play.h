@@ -1,0 +1,46 @@
+// `efc play`: the MuJoCo playback harness (shared/spec/cli.md). Compiles the
+// object for MuJoCo into a temporary folder, drives every receptor that no
+// function drives through a profile, runs the function templates each step
+// through the runtime's MuJoCo binding, and logs t, F.s_R, F.s_E, F.measured.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "compiler/diagnostics.h"
+#include "compiler/ir.h"
+#include "harness/profile.h"
+
+namespace efc {
+
+struct PlayOptions {
+  Profile profile;
+  double duration = 5.0;  // s
+  double dt = 0.002;      // s (MuJoCo timestep)
+  std::string csv_path;   // "" = no CSV
+  std::string render_dir;  // "" = no frames
+  double render_fps = 30;
+  int render_width = 640, render_height = 480;
+  std::string plot_path;  // "" = no SVG
+  bool progress = false;  // progress lines on stderr
+};
+
+struct PlayLog {
+  std::vector<std::string> columns;       // "t", then F.s_R, F.s_E, F.measured per function
+  std::vector<std::vector<double>> rows;  // one per step, the first at t = 0
+  int frames_written = 0;
+  std::vector<std::string> mujoco_warnings;
+};
+
+// Receptor parts the profile drives: receptors of functions that are not the
+// effector of a geometry-effect function (those move as their function says).
+std::vector<int> profile_driven_receptors(const Object& obj);
+
+// Returns the CLI exit code: 0 ok, 1 the input is wrong (diagnostics say
+// why), 2 a file could not be written.
+int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog* log);
+
+// Writes the log as CSV (to a temporary file, then renamed).
+bool write_log_csv(const PlayLog& log, const std::string& path, std::string* error);
+
+}  // namespace efc

@@ -1,0 +1,221 @@
+// The efc command line as a user meets it: exit codes, located diagnostics,
+// all-or-nothing output, and no crash on any malformed file.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kEfc = std::string(EFC_BINARY_DIR) + "/efc";
+const fs::path kSource = EFC_SOURCE_DIR;
+
+struct Result {
+  int exit_code = -1;
+  bool signaled = false;
+  std::string err, out;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+fs::path scratch(const std::string& name) {
+  fs::path p = fs::temp_directory_path() / ("efc-cli-" + std::to_string(getpid())) / name;
+  fs::remove_all(p);
+  fs::create_directories(p.parent_path());
+  return p;
+}
+
+// Runs efc with `args` (already shell-quoted), capturing stdout and stderr.
+Result efc(const std::string& args) {
+  const fs::path out = scratch("stdout.txt"), err = scratch("stderr.txt");
+  const std::string cmd = kEfc + " " + args + " >" + out.string() + " 2>" + err.string() + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  Result r;
+  // std::system runs a shell: a signal in efc shows as exit 128+N from the shell.
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.signaled = WIFSIGNALED(status) || r.exit_code > 128;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+struct Expectation {
+  std::string code;
+  int line;
+};
+
+std::vector<Expectation> expectations_for(const fs::path& file) {
+  std::vector<Expectation> out;
+  const nlohmann::json table = nlohmann::json::parse(slurp(kSource / "tests/specs/bad/expectations.json"));
+  nlohmann::json list;
+  if (table.contains(file.filename().string())) {
+    list = table[file.filename().string()];
+  } else {
+    const nlohmann::json doc = nlohmann::json::parse(slurp(file), nullptr, false);
+    if (doc.is_object() && doc.contains("x-expect")) list = doc["x-expect"];
+  }
+  for (const auto& e : list) out.push_back({e["code"], e["line"]});
+  return out;
+}
+
+}  // namespace
+
+TEST(Cli, EveryBadSpecFailsWithItsCodeAtItsLine) {
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(kSource / "tests/specs/bad")) {
+    if (e.path().filename() == "expectations.json" || e.path().extension() != ".json") continue;
+    SCOPED_TRACE(e.path().filename().string());
+    const std::vector<Expectation> want = expectations_for(e.path());
+    ASSERT_FALSE(want.empty()) << "every bad spec states its expected diagnostics";
+    const Result r = efc("check " + q(e.path()));
+    EXPECT_FALSE(r.signaled);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    for (const Expectation& x : want) {
+      const std::string located = e.path().string() + ":" + std::to_string(x.line) + ":";
+      bool found = false;
+      std::istringstream lines(r.err);
+      for (std::string line; std::getline(lines, line);)
+        found |= line.rfind(located, 0) == 0 && line.find("error[" + x.code + "]") != std::string::npos;
+      EXPECT_TRUE(found) << "expected " << x.code << " at line " << x.line << ", got:\n" << r.err;
+    }
+    ++files;
+  }
+  EXPECT_GT(files, 30);
+}
+
+TEST(Cli, BadSpecCompilesToNothing) {
+  const fs::path out = scratch("bad-out");
+  for (const char* bad : {"trailing_comma.json", "own_parent.json", "binary_bytes.json"}) {
+    const Result r = efc("compile " + q(kSource / "tests/specs/bad" / bad) + " --target mujoco -o " + q(out));
+    EXPECT_EQ(r.exit_code, 1) << bad << r.err;
+    EXPECT_FALSE(fs::exists(out)) << bad;
+  }
+  // Nothing staged is left behind either.
+  for (const auto& e : fs::directory_iterator(out.parent_path()))
+    EXPECT_EQ(e.path().filename().string().find(".efc-staging"), std::string::npos);
+}
+
+TEST(Cli, OneBadSpecAmongGoodOnesChangesNothing) {
+  const fs::path out = scratch("mixed-out");
+  fs::create_directories(out);
+  std::ofstream(out / "keep.txt") << "user file";
+  const Result r = efc("compile " + q(kSource / "examples/desk_lamp.json") + " " +
+                       q(kSource / "tests/specs/bad/own_parent.json") + " --target mujoco -o " + q(out));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 1);
+}
+
+TEST(Cli, DeepNestingIsAnErrorNotACrash) {
+  const fs::path file = scratch("deep.json");
+  {
+    std::ofstream f(file);
+    f << "{\"efc\": 1, \"name\": \"deep\", \"x-deep\": ";
+    for (int i = 0; i < 100000; ++i) f << '[';
+    for (int i = 0; i < 100000; ++i) f << ']';
+    f << "}";
+  }
+  const Result r = efc("check " + q(file));
+  EXPECT_FALSE(r.signaled);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("error["), std::string::npos);
+}
+
+TEST(Cli, MissingFileIsExitTwo) {
+  const Result r = efc("check /nonexistent/spec.json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("error[E0001]"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UsageErrorsAreExitTwo) {
+  EXPECT_EQ(efc("").exit_code, 2);
+  EXPECT_EQ(efc("frobnicate").exit_code, 2);
+  EXPECT_EQ(efc("compile " + q(kSource / "examples/desk_lamp.json") + " --target nosuch -o /tmp/x").exit_code, 2);
+  EXPECT_EQ(efc("play " + q(kSource / "examples/desk_lamp.json") + " --profile wobble --duration 1").exit_code, 2);
+  EXPECT_EQ(efc("--help").exit_code, 0);
+}
+
+TEST(Cli, ExplainDocumentsCodes) {
+  Result r = efc("explain E0203");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("E0203"), std::string::npos);
+  EXPECT_GT(r.out.size(), 100u);
+  EXPECT_EQ(efc("explain E9999").exit_code, 2);
+  r = efc("explain --list");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("E0001"), std::string::npos);
+}
+
+TEST(Cli, JsonDiagnosticsAreJsonLines) {
+  const Result r = efc("check --diagnostics-format json " + q(kSource / "tests/specs/bad/own_parent.json"));
+  EXPECT_EQ(r.exit_code, 1);
+  std::istringstream lines(r.err);
+  int n = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const auto j = nlohmann::json::parse(line);
+    EXPECT_EQ(j["severity"], "error");
+    EXPECT_TRUE(j.contains("code") && j.contains("line") && j.contains("column") && j.contains("pointer"));
+    ++n;
+  }
+  EXPECT_GE(n, 1);
+}
+
+TEST(Cli, DumpIrShowsFilledDefaults) {
+  const Result r = efc("check --dump-ir " + q(kSource / "examples/desk_lamp.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ir = nlohmann::json::parse(r.out);
+  ASSERT_FALSE(ir["functions"].empty());
+  const auto& m = ir["functions"][0]["mapping"];
+  EXPECT_TRUE(m.contains("threshold"));
+  EXPECT_FALSE(m["defaulted"].empty());
+  EXPECT_GT(ir["parts"][0]["mass"].get<double>(), 0);
+}
+
+TEST(Cli, CompileWritesTheMujocoTarget) {
+  const fs::path out = scratch("good-out");
+  const Result r = efc("compile " + q(kSource / "examples/desk_lamp.json") + " --target mujoco -o " + q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "mujoco/desk_lamp.xml"));
+  EXPECT_TRUE(fs::exists(out / "mujoco/desk_lamp_callbacks.cc"));
+  EXPECT_TRUE(fs::exists(out / "mujoco/README.md"));
+}
+
+TEST(Cli, PlayWritesTheCsvContract) {
+  const fs::path csv = scratch("lamp.csv"), svg = scratch("lamp.svg");
+  const Result r = efc("play " + q(kSource / "examples/desk_lamp.json") +
+                       " --profile press:2 --duration 2 --csv " + q(csv) + " --plot " + q(svg));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(csv);
+  std::string header, first;
+  std::getline(in, header);
+  std::getline(in, first);
+  EXPECT_EQ(header.rfind("t,", 0), 0u);
+  EXPECT_NE(header.find(".s_R"), std::string::npos);
+  EXPECT_NE(header.find(".s_E"), std::string::npos);
+  EXPECT_NE(header.find(".measured"), std::string::npos);
+  EXPECT_EQ(first.rfind("0,", 0), 0u);
+  EXPECT_NE(slurp(svg).find("<svg"), std::string::npos);
+}
+
+TEST(Cli, BadProfileCsvIsLocated) {
+  const fs::path prof = scratch("bad_profile.csv");
+  std::ofstream(prof) << "t,switch\n0,0\n0.5,abc\n";
+  const Result r = efc("play " + q(kSource / "examples/desk_lamp.json") + " --profile csv:" + prof.string() +
+                       " --duration 1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(prof.string() + ":3:"), std::string::npos) << r.err;
+}
