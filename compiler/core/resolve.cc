@@ -260,14 +260,9 @@ void effect_defaults(Object& obj, Function& f, Diagnostics& diags) {
       break;
     }
   }
-  if (e.direction) {
+  if (e.direction) {  // check_structure rejected zero directions (E0322)
     const double n = norm(*e.direction);
-    if (n > 0) {
-      e.direction = scaled(*e.direction, 1.0 / n);
-    } else {
-      report(diags, obj, "E0331", e.loc.pointer, "direction of function '" + f.name + "' is zero",
-             "give a non-zero direction vector");
-    }
+    if (n > 0) e.direction = scaled(*e.direction, 1.0 / n);
   }
 }
 

@@ -30,3 +30,11 @@ void report_warning(Diagnostics& diags, const Object& obj, const char* code,
                     const std::string& pointer, std::string message, std::string hint = {});
 
 }  // namespace efc
+
+namespace efc {
+
+// Appends `from` to `to` sorted by line and column (stable), so a run's
+// messages read top to bottom through the file.
+void append_in_file_order(const Diagnostics& from, Diagnostics& to);
+
+}  // namespace efc

@@ -24,6 +24,10 @@ struct ReadOptions {
 
 // Returns the object when the document has the right shape (it may still have
 // errors for check() to find); nullopt when it cannot be used. Errors go to diags.
+// Any reader error (syntax or shape, codes E00xx/E01xx) gives nullopt, so the
+// checks never see a half-filled IR; all of the reader's errors are reported,
+// in file order. Object::positions holds every value's line:col under its JSON
+// pointer, and every key's under "key:" + pointer (frontend/positioned_json.h).
 std::optional<Object> read_json_text(std::string_view text, const std::string& file,
                                      const std::string& base_dir, const ReadOptions& opts,
                                      Diagnostics& diags);

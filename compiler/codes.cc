@@ -1,0 +1,375 @@
+// The catalogue of diagnostic codes, for `efc explain CODE`. Codes are stable:
+// never renumber or reuse one; add new ones at the end of their range.
+//
+//   E00xx  the file itself: I/O, encoding, JSON syntax
+//   E01xx  document shape: types, required/unknown keys, names, enums, paths, meshes
+//   E02xx  parts and joints: the part tree, joint values, geometry sizes
+//   E03xx  functions: references, the function graph, mappings, effects
+//   E09xx  backends and output
+//   Wxxxx  warnings, numbered like the errors of the same area
+#include <algorithm>
+#include <cctype>
+
+#include "compiler/diagnostics.h"
+
+namespace efc {
+
+const std::vector<CodeInfo>& all_codes() {
+  static const std::vector<CodeInfo> codes = {
+      // ---------------------------------------------------------------- E00xx
+      {"E0001", "cannot read the file",
+       "The spec file could not be opened or read: it does not exist, is a folder, or\n"
+       "is not readable. The command exits with code 2.\n"
+       "  efc check exmaples/lamp.json\n"
+       "Fix: check the path and the file's permissions."},
+      {"E0002", "the file is empty",
+       "The file holds nothing but whitespace. A spec is one JSON object.\n"
+       "Fix: write at least {\"efc\": 1, \"name\": \"thing\", \"parts\": [...]}."},
+      {"E0003", "JSON syntax error",
+       "The file is not valid JSON; the position is where parsing failed. Common\n"
+       "causes: a trailing comma, a missing comma or bracket, a truncated file,\n"
+       "comments, single quotes.\n"
+       "  {\"efc\": 1, \"parts\": [ {...}, ]}     <- trailing comma\n"
+       "Fix: correct the syntax at the reported position (a JSON linter helps)."},
+      {"E0004", "the file is not UTF-8 text",
+       "The file contains bytes that are not well-formed UTF-8 (often a binary file,\n"
+       "or text saved in Latin-1). The position is the first bad byte.\n"
+       "Fix: save the spec as UTF-8, or check that you passed the right file."},
+      {"E0005", "nesting too deep",
+       "Arrays and objects are nested deeper than the reader allows (256 levels).\n"
+       "A spec needs fewer than ten; the reader stops instead of risking a crash.\n"
+       "  {\"x-data\": [[[[[[ ... 300 levels ... ]]]]]]}\n"
+       "Fix: this file is probably not a spec; flatten the data."},
+      {"E0006", "number out of range",
+       "A number does not fit a double (it overflows to infinity), or is not finite.\n"
+       "  \"mass\": 1e999\n"
+       "Fix: write a finite number; SI values in a spec are far below 1e308."},
+      {"E0007", "duplicate key",
+       "The same key appears twice in one JSON object. JSON tools disagree on which\n"
+       "value wins, so efc refuses both.\n"
+       "  {\"name\": \"lid\", \"mass\": 0.2, \"mass\": 0.3}\n"
+       "Fix: keep one of them."},
+      // ---------------------------------------------------------------- E01xx
+      {"E0101", "wrong type",
+       "A value has the wrong JSON type: a string where a number is expected, an\n"
+       "object where an array is expected, and so on. The document itself must be\n"
+       "an object.\n"
+       "  \"mass\": \"0.2\"\n"
+       "Fix: write the type the spec asks for (\"mass\": 0.2)."},
+      {"E0102", "missing required field",
+       "A required field is absent. Required: efc, name, parts (top level); name and\n"
+       "geometry (part); type and parent (joint); name, receptor, effector, mapping,\n"
+       "effect (function); type (mapping, effect); size (box); radius (sphere,\n"
+       "cylinder); length (cylinder); stiffness (spring).\n"
+       "  {\"type\": \"revolute\", \"range\": [0, 1]}      <- joint without \"parent\"\n"
+       "Fix: add the field."},
+      {"E0103", "unknown key",
+       "A key the spec does not define at this place. Keys that start with \"x-\" are\n"
+       "allowed anywhere and ignored (kept for tools). Mapping and effect keys depend\n"
+       "on the type: \"gain\" belongs to a linear mapping, not a binary one; \"scale\"\n"
+       "applies only to a mesh; a fixed joint takes no initial, damping, friction or\n"
+       "spring.\n"
+       "  {\"type\": \"revolute\", \"parnet\": \"body\"}\n"
+       "Fix: correct the spelling (the hint suggests the closest key), or prefix the\n"
+       "key with x- to keep private data."},
+      {"E0104", "unsupported format version",
+       "The \"efc\" field must be the integer 1 (this compiler reads spec version 1).\n"
+       "  \"efc\": 2\n"
+       "Fix: write \"efc\": 1, or use a compiler that reads the newer version."},
+      {"E0105", "invalid name",
+       "Names of the object, parts and functions must match\n"
+       "^[A-Za-z_][A-Za-z0-9_]{0,63}$: letters, digits and underscores, not starting\n"
+       "with a digit, at most 64 characters. They become MuJoCo/URDF element names,\n"
+       "C++ identifiers and Python identifiers, so quotes, spaces, '<', '-' or '.'\n"
+       "would break generated code.\n"
+       "  \"name\": \"left door\"\n"
+       "Fix: use \"left_door\"."},
+      {"E0106", "reserved name prefix",
+       "Names may not start with \"efc_\": the compiler gives that prefix to the\n"
+       "elements it generates (e.g. MuJoCo sites, actuators and sensors named\n"
+       "efc_<part>_...), so a user name with it could collide with them.\n"
+       "  \"name\": \"efc_button\"\n"
+       "Fix: choose another name, e.g. \"button\"."},
+      {"E0107", "unknown enumeration value",
+       "A field that takes one of a fixed set of words has another value.\n"
+       "  role: base, receptor, effector, other\n"
+       "  joint type: fixed, revolute, continuous, prismatic\n"
+       "  mapping type: binary, step, linear, cumulative\n"
+       "  effect type: geometry, illumination, temperature, fluid, airflow\n"
+       "  \"type\": \"hinge\"\n"
+       "Fix: use one of the listed words (\"revolute\")."},
+      {"E0108", "geometry needs exactly one kind",
+       "A GEOMETRY object must have exactly one of mesh, box, cylinder, sphere,\n"
+       "compound.\n"
+       "  \"geometry\": {\"box\": {...}, \"sphere\": {...}}\n"
+       "Fix: keep one; a part made of several pieces uses\n"
+       "\"compound\": [{\"box\": ...}, {\"sphere\": ...}]."},
+      {"E0109", "wrong array length",
+       "A fixed-length array has the wrong number of elements: vectors (center,\n"
+       "axis, origin, position, direction, size, rpy, scale, color) take 3 numbers,\n"
+       "ranges 2, rgba 4.\n"
+       "  \"axis\": [0, 1]\n"
+       "Fix: give every component (\"axis\": [0, 1, 0])."},
+      {"E0110", "colour component outside [0, 1]",
+       "rgba and light colours are fractions in [0, 1], not 0..255.\n"
+       "  \"rgba\": [255, 128, 0, 1]\n"
+       "Fix: divide by 255 (\"rgba\": [1.0, 0.5, 0.0, 1.0])."},
+      {"E0111", "mesh file cannot be loaded",
+       "The mesh file exists but could not be read as a mesh: a corrupt or empty\n"
+       "file, an unsupported variant of the format, or no triangles.\n"
+       "Fix: re-export the mesh (OBJ, STL or PLY with triangles) and check it opens\n"
+       "in a viewer."},
+      {"E0112", "mesh path leaves the spec's folder",
+       "Relative paths resolve against the folder that holds the spec and may not\n"
+       "climb out of it with \"..\", so a spec cannot make the compiler read files\n"
+       "elsewhere (the check is on the path as written; symlinks are not followed).\n"
+       "  \"mesh\": \"../../shared/handle.obj\"\n"
+       "Fix: copy the mesh next to the spec (e.g. meshes/handle.obj)."},
+      {"E0113", "absolute mesh path",
+       "Mesh paths must be relative to the spec's folder, so a spec folder can be\n"
+       "moved and shared. Absolute paths are accepted only with\n"
+       "--allow-absolute-paths.\n"
+       "  \"mesh\": \"/home/me/handle.obj\"\n"
+       "Fix: write the path relative to the spec, or pass --allow-absolute-paths."},
+      {"E0114", "unsupported mesh file type",
+       "Meshes must be .obj, .stl or .ply files (any letter case).\n"
+       "  \"mesh\": \"meshes/handle.fbx\"\n"
+       "Fix: convert the mesh to one of those formats."},
+      {"E0115", "mesh file not found",
+       "The mesh path is well-formed but no file exists there (relative to the\n"
+       "spec's folder). The message shows the absolute path that was tried.\n"
+       "  \"mesh\": \"meshes/hadle.obj\"\n"
+       "Fix: correct the path or add the file."},
+      {"E0116", "empty list",
+       "A list that needs at least one element is empty: \"parts\" (an object has at\n"
+       "least its root part) and \"compound\" (at least one piece).\n"
+       "  \"parts\": []\n"
+       "Fix: add the elements."},
+      {"E0120", "geometry encloses no volume",
+       "A part's geometry has zero volume (a flat mesh with no convex hull, for\n"
+       "example), so it has no inertia a simulator could use.\n"
+       "Fix: give the part a solid shape."},
+      // ---------------------------------------------------------------- E02xx
+      {"E0201", "no root part",
+       "Every part has a joint, so nothing is fixed to the world. Exactly one part,\n"
+       "the root, has no joint.\n"
+       "Fix: remove the joint of the part that stands still (usually the base)."},
+      {"E0202", "several root parts",
+       "More than one part has no joint. Exactly one part is the root; every other\n"
+       "part hangs from a parent through a joint.\n"
+       "  {\"name\": \"base\", ...}, {\"name\": \"lid\", ...}    <- neither has a joint\n"
+       "Fix: give the extra part a joint; \"type\": \"fixed\" attaches it rigidly."},
+      {"E0203", "joint range not ordered",
+       "A joint range [lo, hi] must have lo < hi (radians for revolute, metres for\n"
+       "prismatic). Joint position 0 need not lie inside it.\n"
+       "  \"range\": [1.2, 0.3]\n"
+       "Fix: swap the two numbers (\"range\": [0.3, 1.2])."},
+      {"E0204", "unknown parent",
+       "A joint's \"parent\" names no part of the object.\n"
+       "  \"parent\": \"bdoy\"\n"
+       "Fix: use the name of an existing part (the hint suggests the closest one)."},
+      {"E0205", "part is its own parent",
+       "A joint's \"parent\" is the part that owns the joint.\n"
+       "Fix: name the part it is mounted on."},
+      {"E0206", "parents form a cycle",
+       "Following parents from some part comes back to it (a -> b -> a), so the parts\n"
+       "do not form a tree hanging from the root.\n"
+       "Fix: make one of the parts in the loop hang from a part outside it."},
+      {"E0207", "duplicate part name",
+       "Two parts have the same name; names identify parts in joints, functions and\n"
+       "generated files.\n"
+       "Fix: rename one of them."},
+      {"E0208", "joint range missing",
+       "Revolute and prismatic joints need \"range\": [lo, hi] (their limits).\n"
+       "  {\"type\": \"revolute\", \"parent\": \"body\", \"axis\": [0, 0, 1]}\n"
+       "Fix: add the range, or use \"type\": \"continuous\" for a joint that turns\n"
+       "without limits."},
+      {"E0209", "joint range not allowed",
+       "Continuous and fixed joints have no limits, so they take no range.\n"
+       "  {\"type\": \"continuous\", \"range\": [0, 6.28], ...}\n"
+       "Fix: remove the range, or use \"type\": \"revolute\" for a limited joint."},
+      {"E0210", "zero axis",
+       "A joint axis or a cylinder axis is [0, 0, 0], which has no direction.\n"
+       "Fix: give a direction, e.g. [0, 0, 1]."},
+      {"E0211", "axis on a fixed joint",
+       "A fixed joint does not move, so an axis means nothing and is rejected (it\n"
+       "usually signals the wrong joint type).\n"
+       "Fix: remove the axis, or choose a movable joint type."},
+      {"E0212", "mass not positive",
+       "A part's mass must be > 0 kg.\n"
+       "  \"mass\": 0\n"
+       "Fix: give the real mass, or leave it out: it is then computed from the\n"
+       "geometry's volume at 500 kg/m^3."},
+      {"E0213", "geometry size not positive",
+       "Box sizes, radii, lengths and mesh scale factors must be > 0.\n"
+       "  {\"sphere\": {\"radius\": -0.1}}\n"
+       "Fix: use positive sizes in metres (box sizes are full edge lengths)."},
+      {"E0214", "negative joint damping or friction, or a spring without stiffness",
+       "Joint damping and friction must be >= 0 (negative values inject energy and\n"
+       "make the simulation blow up); a spring's stiffness must be > 0.\n"
+       "  \"damping\": -0.05\n"
+       "Fix: use 0 or a positive value (a positive stiffness, or no spring)."},
+      // ---------------------------------------------------------------- E03xx
+      {"E0301", "duplicate function name",
+       "Two functions have the same name; names label logs, CSV columns and\n"
+       "generated code.\n"
+       "Fix: rename one of them."},
+      {"E0302", "unknown receptor",
+       "A function's \"receptor\" names no part.\n"
+       "Fix: use the name of the part the user moves."},
+      {"E0303", "unknown effector",
+       "A function's \"effector\" names no part.\n"
+       "Fix: use the name of the part the function acts on."},
+      {"E0304", "receptor and effector are the same part",
+       "A function maps the receptor's state to an effect on another part; the two\n"
+       "must differ.\n"
+       "Fix: name the part that shows the effect as the effector."},
+      {"E0305", "receptor cannot move",
+       "The receptor's state is its joint position, so it needs a movable joint:\n"
+       "the root and parts with a fixed joint cannot be receptors.\n"
+       "Fix: give the receptor a revolute, continuous or prismatic joint."},
+      {"E0306", "geometry effect on a part that cannot move",
+       "A geometry effect drives the effector's joint, so the effector needs a\n"
+       "movable joint.\n"
+       "  effector \"lid\" with {\"type\": \"fixed\"} and effect {\"type\": \"geometry\"}\n"
+       "Fix: give the effector a revolute, continuous or prismatic joint."},
+      {"E0307", "two functions write the same effect",
+       "Two functions set the same effect type on the same effector (e.g. both set\n"
+       "the illumination of \"bulb\"), so the result would depend on their order.\n"
+       "Fix: merge them, or give each a different effector or effect type."},
+      {"E0308", "functions form a cycle",
+       "Functions may chain (one function's effector is another's receptor) but the\n"
+       "chain may not loop back: a -> b and b -> a would drive each other forever.\n"
+       "Fix: remove one function of the loop."},
+      {"E0309", "effect range has equal ends",
+       "An effect range is [off, on]; the two ends must differ (on may be below off).\n"
+       "  \"range\": [0, 0]\n"
+       "Fix: give the state at rest and the fully actuated state."},
+      {"E0310", "unphysical effect value",
+       "Light output (lumens), flow (L/min) and air speed (m/s) cannot be negative;\n"
+       "a temperature cannot be below absolute zero (-273.15 C).\n"
+       "  {\"type\": \"illumination\", \"range\": [-10, 800]}\n"
+       "Fix: use physical values."},
+      {"E0311", "parameter must be positive",
+       "time_constant, speed, droplet_radius and reach must be > 0.\n"
+       "  \"time_constant\": 0\n"
+       "Fix: use a positive value, or leave it out for the default."},
+      {"E0312", "cone angle out of range",
+       "An airflow cone_angle is the cone's half-angle in radians and must lie in\n"
+       "(0, pi/2).\n"
+       "  \"cone_angle\": 20        <- degrees by mistake\n"
+       "Fix: use radians (0.35 is about 20 degrees)."},
+      {"E0313", "negative drive stiffness or damping",
+       "A geometry effect's drive stiffness and damping must be >= 0.\n"
+       "Fix: use 0 or a positive value, or leave them out for the defaults."},
+      {"E0314", "cumulative delta missing",
+       "A cumulative mapping adds \"delta\" per press; it has no default.\n"
+       "  {\"type\": \"cumulative\", \"threshold\": 0.002}\n"
+       "Fix: add \"delta\" (negative for a \"minus\" button)."},
+      {"E0315", "cumulative delta is zero",
+       "A cumulative mapping with delta 0 never changes its output.\n"
+       "Fix: use a non-zero delta."},
+      {"E0316", "linear gain is zero",
+       "A linear mapping's gain must be finite and non-zero (negative is allowed).\n"
+       "Fix: give the output change per unit of receptor motion, or leave it out\n"
+       "to map the receptor range onto the effect range."},
+      {"E0317", "continuous receptor needs an explicit threshold or gain",
+       "A continuous joint has no range, so the defaults that come from the range do\n"
+       "not exist: binary, step and cumulative mappings need \"threshold\", linear\n"
+       "mappings need \"gain\".\n"
+       "Fix: add the threshold (radians) or the gain (units per radian)."},
+      {"E0318", "threshold outside the receptor range",
+       "A threshold must lie inside the receptor joint's [lo, hi], otherwise the\n"
+       "receptor never reaches it and the function never fires. (Any finite\n"
+       "threshold is fine for a continuous receptor.)\n"
+       "  receptor range [0, 0.004], \"threshold\": 0.01\n"
+       "Fix: pick a value in the range, or leave it out for the default."},
+      {"E0319", "negative hysteresis",
+       "A step mapping's hysteresis is the width below the threshold where the\n"
+       "output holds; it must be >= 0.\n"
+       "Fix: use 0 or a positive value."},
+      {"E0320", "geometry effect range outside the effector joint's range",
+       "Both ends of a geometry effect's range are joint targets and must lie inside\n"
+       "the effector joint's [lo, hi] (any value for a continuous joint).\n"
+       "  joint range [0, 1.57], effect \"range\": [0, 2.0]\n"
+       "Fix: keep the targets inside the limits, or leave the range out to use them."},
+      {"E0321", "cumulative initial outside the effect range",
+       "A cumulative mapping's initial state must lie between the effect's two ends\n"
+       "(the state is always clamped there).\n"
+       "Fix: start inside the range, or leave it out (it defaults to the off end)."},
+      {"E0322", "zero direction",
+       "A fluid emitter's or airflow outlet's direction is [0, 0, 0].\n"
+       "Fix: give a direction, e.g. [0, 0, -1] for straight down."},
+      {"E0330", "geometry effect on a continuous joint needs a range",
+       "A geometry effect's range defaults to its effector joint's range; a\n"
+       "continuous joint has none.\n"
+       "  \"effect\": {\"type\": \"geometry\"}   on a continuous effector\n"
+       "Fix: give \"range\": [off, on] in radians."},
+      // ---------------------------------------------------------------- E09xx
+      {"E0900", "cannot write output",
+       "A backend could not write its output (permissions, a full disk, a path that\n"
+       "is a file). Output is all-or-nothing, so nothing in the output folder was\n"
+       "changed. The command exits with code 2.\n"
+       "Fix: check the -o folder is writable and has space."},
+      {"E0901", "MuJoCo rejected or failed on the compiled model",
+       "efc play compiled the spec for MuJoCo but MuJoCo could not load or step it.\n"
+       "This is a compiler defect if the spec checked cleanly.\n"
+       "Fix: report it with the spec; try a smaller --dt meanwhile."},
+      {"E0902", "offscreen rendering is unavailable",
+       "--render needs an OSMesa context (libosmesa6), which could not be created.\n"
+       "Fix: install libosmesa6 (scripts/setup does), or play without --render."},
+      {"E0903", "bad profile CSV",
+       "The csv:FILE profile must have a header 't,<part>[,<part>...]' and rows of\n"
+       "finite numbers with strictly increasing times; the line is the bad one.\n"
+       "  t,handle\n  0,0\n  0.5,abc      <- not a number\n"
+       "Fix: correct the row."},
+      // ---------------------------------------------------------------- warnings
+      {"W0103", "mesh is not closed",
+       "The mesh has holes or edges not shared by exactly two triangles, so its\n"
+       "volume integrals are meaningless; mass and inertia come from its convex hull.\n"
+       "Fix: close the mesh (or give \"mass\"; inertia still uses the hull)."},
+      {"W0201", "joint axis is not a unit vector",
+       "A joint axis is normalised by the compiler; a length far from 1 (by more than\n"
+       "0.001) often signals a typo.\n"
+       "  \"axis\": [0, 2, 0]\n"
+       "Fix: write the unit vector ([0, 1, 0])."},
+      {"W0202", "origin on a prismatic joint is ignored",
+       "A slide has no pivot, so a prismatic joint's origin has no effect.\n"
+       "Fix: remove the origin."},
+      {"W0210", "initial position clamped into the joint range",
+       "A joint's initial position lies outside its range; the initial state is\n"
+       "clamped to the nearer limit.\n"
+       "Fix: give an initial value inside the range."},
+      {"W0901", "MuJoCo warned during playback",
+       "MuJoCo reported a warning while stepping (e.g. too many contacts for the\n"
+       "preallocated pool); results after it may be degraded.\n"
+       "Fix: report it with the spec; a smaller --dt may help."},
+      {"W0902", "profile CSV lacks a receptor",
+       "A csv:FILE profile has no column for a receptor that the profile drives;\n"
+       "that receptor holds its initial position.\n"
+       "Fix: add a column named after the receptor part."},
+      {"W0903", "hold value outside a receptor's range",
+       "hold:V asks for a position outside a receptor's joint range; the joint limit\n"
+       "stops it there.\n"
+       "Fix: hold inside the range, or use hold:lo / hold:hi."},
+      {"W0900", "backend cannot express a feature",
+       "A target cannot express something in the spec (e.g. a spring, a light or a\n"
+       "particle emitter); the warning names the feature and what was emitted\n"
+       "instead. Nothing is dropped silently.\n"
+       "Fix: none needed if the substitute is acceptable; otherwise use a target\n"
+       "that supports the feature."},
+  };
+  return codes;
+}
+
+// Case-insensitive: `efc explain e0203` works too.
+const CodeInfo* find_code(const std::string& code_in) {
+  std::string code = code_in;
+  for (auto& ch : code) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  const auto& codes = all_codes();
+  auto it = std::find_if(codes.begin(), codes.end(),
+                         [&](const CodeInfo& c) { return code == c.code; });
+  return it == codes.end() ? nullptr : &*it;
+}
+
+}  // namespace efc
