@@ -9,7 +9,7 @@
 
 #include "compiler/diagnostics.h"
 #include "compiler/ir.h"
-#include "harness/profile.h"
+#include "efc_profile.h"
 
 namespace efc {
 

@@ -1,5 +1,6 @@
-// Receptor motion profiles for `efc play` (shared/spec/cli.md): ramp, sweep,
-// press:N, hold:V (hold:lo, hold:hi), csv:FILE.
+// Receptor motion profiles (shared/spec/cli.md): ramp, sweep, press:N, hold:V
+// (hold:lo, hold:hi), csv:FILE. Dependency-free (standard library only): the
+// harness and every generated program (Bullet, ...) drive receptors with it.
 #pragma once
 
 #include <map>

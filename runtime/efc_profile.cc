@@ -1,4 +1,4 @@
-#include "harness/profile.h"
+#include "efc_profile.h"
 
 #include <algorithm>
 #include <cerrno>
