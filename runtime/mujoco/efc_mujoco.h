@@ -95,12 +95,17 @@ class Controller {
   };
   void apply(const mjModel* m, mjData* d, int i, int emit);
   void park(const mjModel* m, mjData* d, Droplet& drop, int index);
+  void fluid(const mjModel* m, mjData* d, int i, int emit);
+  void airflow(const mjModel* m, mjData* d, int i);
+  void clear_air_forces(mjData* d);
 
   std::vector<FunctionBinding> rows_;
   std::vector<efc_rt::FunctionState> states_;
   std::vector<Resolved> resolved_;
   std::vector<FunctionReadout> readouts_;
   double floor_z_ = 0;
+  std::vector<int> free_bodies_;    // bodies on a free joint: what air can push
+  std::vector<int> pushed_bodies_;  // bodies whose xfrc_applied we set last step
   std::string error_;
 };
 
