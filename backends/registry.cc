@@ -4,9 +4,11 @@ namespace efc {
 
 // Each target defines its factory next to its emitter.
 const Backend* mujoco_backend();
+const Backend* urdf_backend();
+const Backend* bullet_backend();
 
 const std::vector<const Backend*>& all_backends() {
-  static const std::vector<const Backend*> table = {mujoco_backend()};
+  static const std::vector<const Backend*> table = {mujoco_backend(), urdf_backend(), bullet_backend()};
   return table;
 }
 
