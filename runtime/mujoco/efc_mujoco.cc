@@ -291,8 +291,11 @@ void Controller::fluid(const mjModel* m, mjData* d, int i, int emit) {
   }
   for (int e = 0; e < emit; ++e) r.emit_times.push_back(now);
   // Flow measured from droplets actually spawned in the last kFlowWindow s.
+  // The window covers exactly kFlowWindow / timestep steps: half a step of
+  // slack keeps d->time's rounding from counting one step too many.
+  const double edge = now - kFlowWindow + 0.5 * m->opt.timestep;
   auto stale = std::find_if(r.emit_times.begin(), r.emit_times.end(),
-                            [&](double t) { return t > now - kFlowWindow; });
+                            [&](double t) { return t > edge; });
   r.emit_times.erase(r.emit_times.begin(), stale);
   const double spawned = r.droplets.empty() ? 0.0 : static_cast<double>(r.emit_times.size());
   readouts_[i].measured = spawned * b.params.effect.droplet_volume_l / kFlowWindow * 60.0;
