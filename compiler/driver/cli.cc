@@ -116,6 +116,17 @@ int run_cli(int argc, char** argv) {
   playc->add_option("--plot", plot, "draw s_R, s_E and measured over time as SVG");
   add_common(playc, &common, &format);
 
+  std::string bullet_exe, csv_dir;
+  CLI::App* parity = app.add_subcommand(
+      "parity", "run the MuJoCo harness and the compiled Bullet program; compare them per function");
+  parity->add_option("SPEC", spec, "spec file")->required();
+  parity->add_option("--profile", profile, "ramp, sweep, press:N, hold:V (lo/hi), csv:FILE")->required();
+  parity->add_option("--duration", duration, "seconds")->required();
+  parity->add_option("--dt", dt, "timestep in seconds (default 0.002)");
+  parity->add_option("--bullet-exe", bullet_exe, "a built <name>_bullet program (default: build one, cached)");
+  parity->add_option("--csv-dir", csv_dir, "also write mujoco.csv, bullet.csv, receptors.csv into DIR");
+  add_common(parity, &common, &format);
+
   std::string code;
   bool list = false;
   CLI::App* explain = app.add_subcommand("explain", "explain a diagnostic code (e.g. E0203)");
@@ -133,6 +144,7 @@ int run_cli(int argc, char** argv) {
   if (*check) return cmd_check(specs, dump_ir, common);
   if (*compile) return cmd_compile(specs, targets, out_dir, common);
   if (*playc) return cmd_play(spec, profile, duration, dt, csv, render, plot, fps, common);
+  if (*parity) return cmd_parity(spec, profile, duration, dt, bullet_exe, csv_dir, common);
   if (*explain) return cmd_explain(code, list);
   return 2;
 }

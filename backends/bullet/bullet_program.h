@@ -1,0 +1,20 @@
+// The generated Bullet program: <name>_bullet.cc = the engine text
+// (bullet_engine.cc) + the object as tables + main(); and its CMakeLists.txt
+// and README.md.
+#pragma once
+
+#include <string>
+
+#include "backends/bullet/bullet_model.h"
+#include "compiler/ir.h"
+
+namespace efc {
+namespace bullet {
+
+const char* engine_prelude();
+std::string emit_program(const Object& obj, const Model& model);
+std::string emit_cmake(const Object& obj);
+std::string emit_readme(const Object& obj, const Model& model);
+
+}  // namespace bullet
+}  // namespace efc

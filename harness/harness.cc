@@ -1,1 +1,0 @@
-// The playback harness.
