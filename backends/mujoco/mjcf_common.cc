@@ -115,25 +115,38 @@ DriveGains drive_gains(const Object& obj, const Layout& L, int part, double q_lo
   constexpr double kG = 9.81;
   const Joint& j = *obj.parts[part].joint;
   const Vec3& a = j.axis;
-  const Composite c = subtree(obj, L, part);
-  double inertia = 0, gravity = 0;
-  if (j.type == JointType::Prismatic) {
-    inertia = c.mass;
-    gravity = c.mass * kG * std::fabs(a[2]);
-  } else {
+  // Inertia about the joint axis: of the rigid subtree (what the drive must
+  // hold against) and of the part alone (what the joint may feel when the
+  // parts it carries swing freely on their own joints).
+  auto about_axis = [&](const Composite& c) {
+    if (j.type == JointType::Prismatic) return c.mass;
     Vec3 r, aI{0, 0, 0};
     for (int k = 0; k < 3; ++k) r[k] = c.com[k] - j.origin[k];
     const double ra = r[0] * a[0] + r[1] * a[1] + r[2] * a[2];
     const double rr = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-    const double perp = std::sqrt(std::max(0.0, rr - ra * ra));
     for (int k = 0; k < 3; ++k)
       for (int s = 0; s < 3; ++s) aI[k] += c.inertia[k][s] * a[s];
-    inertia = a[0] * aI[0] + a[1] * aI[1] + a[2] * aI[2] + c.mass * perp * perp;
+    return a[0] * aI[0] + a[1] * aI[1] + a[2] * aI[2] + c.mass * std::max(0.0, rr - ra * ra);
+  };
+  const Composite c = subtree(obj, L, part);
+  Composite alone;
+  alone.mass = obj.parts[part].mass_props.mass;
+  alone.com = obj.parts[part].mass_props.com;
+  alone.inertia = obj.parts[part].mass_props.inertia;
+  double gravity = 0;
+  if (j.type == JointType::Prismatic) {
+    gravity = c.mass * kG * std::fabs(a[2]);
+  } else {
+    Vec3 r;
+    for (int k = 0; k < 3; ++k) r[k] = c.com[k] - j.origin[k];
+    const double ra = r[0] * a[0] + r[1] * a[1] + r[2] * a[2];
+    const double perp = std::sqrt(std::max(0.0, r[0] * r[0] + r[1] * r[1] + r[2] * r[2] - ra * ra));
     // Worst case over the joint's rotation: the lever arm perpendicular to
     // both the axis and gravity's component across it.
     gravity = c.mass * kG * std::sqrt(std::max(0.0, 1 - a[2] * a[2])) * perp;
   }
-  inertia = std::max(inertia, 1e-9);
+  const double inertia = std::max(about_axis(c), 1e-9);
+  const double own = std::max(about_axis(alone), 1e-9);
   const double ks = j.spring ? j.spring->stiffness : 0;
   const double rest = j.spring ? j.spring->rest : 0;
   const double stretch = std::max(std::fabs(q_lo - rest), std::fabs(q_hi - rest));
@@ -145,13 +158,17 @@ DriveGains drive_gains(const Object& obj, const Layout& L, int part, double q_lo
     const double w = 2 * 3.14159265358979323846 * hz;
     g.kp = std::max(inertia * w * w, tolerance > 0 ? load / tolerance : 0.0);
   }
-  // Semi-implicit Euler integrates the velocity actuator's damping
-  // explicitly: with critical damping it is well behaved while omega dt <=
-  // 0.4. A stiffer servo on a light part gets rotor inertia (armature)
-  // instead of a smaller gain, so it still holds its target.
+  // Semi-implicit Euler integrates the servo's stiffness and the velocity
+  // actuator's damping explicitly: stable while omega dt <= 0.4 and
+  // kv dt / I <= 1 for the inertia the joint actually feels, which can be as
+  // low as the part's own when what it carries swings freely. Rotor inertia
+  // (armature) bounds that inertia from below (M >= diag(armature)), so a stiff
+  // servo on a light part keeps its gain and stays stable.
   const double wmax = 0.4 / timestep;
-  const double need = (g.kp + ks) / (wmax * wmax);
-  if (need > inertia) g.armature = need - inertia;
+  const double kv_rigid =
+      damping ? *damping : std::max(0.0, 2 * std::sqrt((g.kp + ks) * inertia) - j.damping);
+  const double need = std::max((g.kp + ks) / (wmax * wmax), kv_rigid * timestep);
+  if (need > own) g.armature = need - own;
   g.inertia = inertia + g.armature;
   if (damping) {
     g.kv = *damping;

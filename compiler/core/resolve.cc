@@ -13,11 +13,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDefaultDensity = 500.0;  // kg/m^3 (spec: PART.mass)
-constexpr double kGravity = 9.81;
-// Geometry-effect drives: natural frequency of the default servo, and the
-// steady-state error budget (the parity issue allows 2% of the range; aim at 1%).
-constexpr double kDriveHz = 4.0;
-constexpr double kDriveErrorFraction = 0.01;
 
 double norm(const Vec3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -90,29 +85,7 @@ void resolve_joint(Object& obj, Part& p, Diagnostics& diags) {
   j.initial = initial;
 }
 
-// Moment of inertia of a part about a joint axis (rotation) or its mass (translation).
-double drive_inertia(const Part& p) {
-  const Joint& j = *p.joint;
-  const MassProperties& mp = p.mass_props;
-  if (j.type == JointType::Prismatic) return mp.mass;
-  const Vec3& a = j.axis;
-  double i_axis = 0;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) i_axis += a[r] * mp.inertia[r][c] * a[c];
-  const Vec3 d = sub(mp.com, j.origin);
-  const Vec3 perp = sub(d, scaled(a, dot(d, a)));
-  return i_axis + mp.mass * dot(perp, perp);
-}
 
-// The largest generalized force gravity can put on the joint (N*m or N).
-double gravity_load(const Part& p) {
-  const Joint& j = *p.joint;
-  const MassProperties& mp = p.mass_props;
-  if (j.type == JointType::Prismatic) return mp.mass * kGravity * std::fabs(j.axis[2]);
-  const Vec3 d = sub(mp.com, j.origin);
-  const Vec3 perp = sub(d, scaled(j.axis, dot(d, j.axis)));
-  return mp.mass * kGravity * norm(perp);
-}
 
 void receptor_defaults(const Object& obj, Function& f) {
   double r_lo, r_hi;
@@ -211,28 +184,11 @@ void effect_defaults(Object& obj, Function& f, Diagnostics& diags) {
     }
   }
   switch (e.type) {
-    case EffectType::Geometry: {
-      const Part& p = effector;
-      const double inertia = std::max(drive_inertia(p), 1e-9);
-      const double range = std::max(std::fabs(e.hi - e.lo), 1e-9);
-      const double spring = p.joint->spring ? p.joint->spring->stiffness : 0;
-      // Stiff enough for a kDriveHz servo, and to hold against gravity and the
-      // joint's own spring within kDriveErrorFraction of the range.
-      const double omega = 2 * kPi * kDriveHz;
-      const double kp_dynamics = inertia * omega * omega;
-      const double kp_static =
-          (gravity_load(p) + spring * (range + std::fabs(e.hi) + std::fabs(e.lo))) /
-          (kDriveErrorFraction * range);
-      if (!e.stiffness) {
-        e.stiffness = std::max(kp_dynamics, kp_static);
-        mark("stiffness");
-      }
-      if (!e.damping) {
-        e.damping = 2 * std::sqrt(*e.stiffness * inertia);  // critical
-        mark("damping");
-      }
+    case EffectType::Geometry:
+      // Drive stiffness and damping, when not given, are the backend's: they
+      // depend on the whole subtree the drive carries and on the timestep
+      // (backends/mujoco/mjcf_common.cc has the rule, shared with Bullet).
       break;
-    }
     case EffectType::Illumination:
       if (!e.color) { e.color = Vec3{1, 1, 1}; mark("color"); }
       if (!e.position) { e.position = bbox_center(effector); mark("position"); }
@@ -251,10 +207,12 @@ void effect_defaults(Object& obj, Function& f, Diagnostics& diags) {
       if (!e.droplet_radius) { e.droplet_radius = 0.004; mark("droplet_radius"); }
       break;
     case EffectType::Airflow: {
-      Vec3 pos, dir;
-      default_outlet(effector, receptor, &pos, &dir);
-      if (!e.position) { e.position = pos; mark("outlet.position"); }
-      if (!e.direction) { e.direction = dir; mark("outlet.direction"); }
+      if (!e.position || !e.direction) {  // the OBB is the costly part of resolve
+        Vec3 pos, dir;
+        default_outlet(effector, receptor, &pos, &dir);
+        if (!e.position) { e.position = pos; mark("outlet.position"); }
+        if (!e.direction) { e.direction = dir; mark("outlet.direction"); }
+      }
       if (!e.cone_angle) { e.cone_angle = 0.35; mark("cone_angle"); }
       if (!e.reach) { e.reach = 0.6; mark("reach"); }
       break;
