@@ -45,14 +45,15 @@ void BM_check(benchmark::State& state, const efc_bench::BenchSpec& spec) {
   set_counters(state, *obj);
 }
 
-void BM_compile_mujoco(benchmark::State& state, const efc_bench::BenchSpec& spec) {
+// load_spec + one target's emit (the driver's work for `efc compile --target T`).
+void BM_compile(benchmark::State& state, const efc_bench::BenchSpec& spec, const char* target) {
   std::string error;
   const auto obj = efc_bench::load(spec.path, &error);
   if (!obj) return state.SkipWithError(error.c_str());
-  const efc::Backend* backend = efc::find_backend("mujoco");
-  if (!backend) return state.SkipWithError("no mujoco backend registered");
+  const efc::Backend* backend = efc::find_backend(target);
+  if (!backend) return state.SkipWithError("target not registered");
   efc_bench::TempDir tmp("efc-bench-compile");
-  const std::string out = (tmp.path() / "mujoco").string();
+  const std::string out = (tmp.path() / target).string();
   for (auto _ : state) {
     // What the driver does: an empty folder, load, emit.
     std::error_code ec;
@@ -140,7 +141,9 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   for (const efc_bench::BenchSpec& spec : efc_bench::bench_specs()) {
     add("check", spec, BM_check);
-    add("compile_mujoco", spec, BM_compile_mujoco);
+    for (const char* target : {"mujoco", "urdf", "bullet"})
+      add(std::string("compile_") + target, spec,
+          [target](benchmark::State& st, const efc_bench::BenchSpec& sp) { BM_compile(st, sp, target); });
     add("compile_mjcf", spec, BM_compile_mjcf);
     add("mujoco_load", spec, BM_mujoco_load);
   }

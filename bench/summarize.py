@@ -118,6 +118,14 @@ def main(argv):
             worst[0], worst[1], sorted(r for r, _ in ratios)[len(ratios) // 2],
             ", 200-part spec %.3f" % large[0] if large else "", RATIO_TARGET,
             "met" if worst[0] < RATIO_TARGET else "NOT met"))
+    print()
+    print("Other targets: load_spec + emit (ms, median)")
+    other = []
+    for spec in specs_in(comp, {"compile_urdf", "compile_bullet"}):
+        u, b = comp.get(("compile_urdf", spec)), comp.get(("compile_bullet", spec))
+        f = lambda e: "%.3f" % ms(e)
+        other.append([spec, cell(u, f), cell(b, f)])
+    table(["spec", "urdf", "bullet"], other)
 
     for group, title, target in (
             ("play", "Playback without particles", True),
