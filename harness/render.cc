@@ -1,0 +1,205 @@
+#include "harness/render.h"
+
+#include <GL/osmesa.h>
+#include <png.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+namespace efc {
+namespace {
+
+struct MujocoError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+void throwing_error_handler(const char* msg) { throw MujocoError(msg ? msg : "MuJoCo error"); }
+
+// Installs a throwing mju_user_error for the duration of a renderer call, so a
+// MuJoCo error inside rendering becomes a failure we report instead of an exit
+// (the default handler waits for Enter). Restores the previous handler.
+class ErrorGuard {
+ public:
+  ErrorGuard() : saved_(mju_user_error) { mju_user_error = throwing_error_handler; }
+  ~ErrorGuard() { mju_user_error = saved_; }
+  ErrorGuard(const ErrorGuard&) = delete;
+  ErrorGuard& operator=(const ErrorGuard&) = delete;
+
+ private:
+  void (*saved_)(const char*);
+};
+
+}  // namespace
+
+OffscreenRenderer::OffscreenRenderer(const mjModel* m, int width, int height) {
+  if (!m) {
+    error_ = "no model";
+    return;
+  }
+  int maxw = m->vis.global.offwidth > 0 ? m->vis.global.offwidth : 640;
+  int maxh = m->vis.global.offheight > 0 ? m->vis.global.offheight : 480;
+  width_ = std::max(1, std::min(width > 0 ? width : maxw, maxw));
+  height_ = std::max(1, std::min(height > 0 ? height : maxh, maxh));
+
+  OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
+  if (!ctx) {
+    error_ = "OSMesaCreateContextExt failed";
+    return;
+  }
+  osmesa_ = ctx;
+  osbuf_.assign(static_cast<size_t>(width_) * height_ * 4, 0);
+  if (!OSMesaMakeCurrent(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
+    error_ = "OSMesaMakeCurrent failed";
+    return;
+  }
+
+  mjv_defaultScene(&scn_);
+  mjr_defaultContext(&con_);
+  mjv_defaultCamera(&cam_);
+  mjv_defaultOption(&opt_);
+  try {
+    ErrorGuard guard;
+    mjv_makeScene(m, &scn_, 2000);
+    scene_made_ = true;
+    mjr_makeContext(m, &con_, mjFONTSCALE_150);
+    context_made_ = true;
+    mjr_setBuffer(mjFB_OFFSCREEN, &con_);
+    if (con_.currentBuffer != mjFB_OFFSCREEN) {
+      error_ = "offscreen framebuffer not available";
+      return;
+    }
+  } catch (const std::exception& e) {
+    error_ = std::string("MuJoCo rendering setup failed: ") + e.what();
+    return;
+  }
+  // The actual offscreen buffer may be smaller than requested.
+  width_ = std::min(width_, con_.offWidth);
+  height_ = std::min(height_, con_.offHeight);
+
+  camera_id_ = mj_name2id(m, mjOBJ_CAMERA, "efc_camera");
+  if (camera_id_ >= 0) {
+    cam_.type = mjCAMERA_FIXED;
+    cam_.fixedcamid = camera_id_;
+  } else {
+    mjv_defaultFreeCamera(m, &cam_);
+  }
+  ok_ = true;
+}
+
+OffscreenRenderer::~OffscreenRenderer() {
+  if (osmesa_) {
+    OSMesaContext ctx = static_cast<OSMesaContext>(osmesa_);
+    OSMesaMakeCurrent(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, std::max(1, width_),
+                      std::max(1, height_));
+    try {
+      ErrorGuard guard;
+      if (context_made_) mjr_freeContext(&con_);
+      if (scene_made_) mjv_freeScene(&scn_);
+    } catch (...) {
+    }
+    OSMesaDestroyContext(ctx);
+    osmesa_ = nullptr;
+  }
+}
+
+bool OffscreenRenderer::render_rgb(const mjModel* m, mjData* d, std::vector<unsigned char>* rgb,
+                                   int* w, int* h) {
+  if (!ok_) {
+    if (error_.empty()) error_ = "renderer not initialised";
+    return false;
+  }
+  if (!m || !d || !rgb) {
+    error_ = "render_rgb: null argument";
+    return false;
+  }
+  OSMesaContext ctx = static_cast<OSMesaContext>(osmesa_);
+  if (OSMesaGetCurrentContext() != ctx &&
+      !OSMesaMakeCurrent(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
+    error_ = "OSMesaMakeCurrent failed";
+    return false;
+  }
+  std::vector<unsigned char> raw(static_cast<size_t>(width_) * height_ * 3);
+  try {
+    ErrorGuard guard;
+    mjrRect viewport = {0, 0, width_, height_};
+    mjr_setBuffer(mjFB_OFFSCREEN, &con_);
+    mjv_updateScene(m, d, &opt_, nullptr, &cam_, mjCAT_ALL, &scn_);
+    mjr_render(viewport, &scn_, &con_);
+    mjr_readPixels(raw.data(), nullptr, viewport, &con_);
+  } catch (const std::exception& e) {
+    error_ = std::string("MuJoCo rendering failed: ") + e.what();
+    return false;
+  }
+  // OpenGL rows are bottom-first; flip to top-first.
+  const size_t row = static_cast<size_t>(width_) * 3;
+  rgb->resize(raw.size());
+  for (int y = 0; y < height_; ++y) {
+    std::memcpy(rgb->data() + static_cast<size_t>(y) * row,
+                raw.data() + static_cast<size_t>(height_ - 1 - y) * row, row);
+  }
+  if (w) *w = width_;
+  if (h) *h = height_;
+  return true;
+}
+
+bool OffscreenRenderer::render_png(const mjModel* m, mjData* d, const std::string& path) {
+  std::vector<unsigned char> rgb;
+  int w = 0, h = 0;
+  if (!render_rgb(m, d, &rgb, &w, &h)) return false;
+  return write_png_rgb(path, rgb.data(), w, h, &error_);
+}
+
+namespace {
+
+// Kept free of C++ objects with destructors between setjmp and longjmp.
+bool write_png_impl(FILE* fp, const unsigned char* rgb, int width, int height,
+                    png_bytep* rows) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_init_io(png, fp);
+  png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  for (int y = 0; y < height; ++y)
+    rows[y] = const_cast<png_bytep>(rgb + static_cast<size_t>(y) * width * 3);
+  png_write_info(png, info);
+  png_write_image(png, rows);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+}  // namespace
+
+bool write_png_rgb(const std::string& path, const unsigned char* rgb, int width, int height,
+                   std::string* error) {
+  if (!rgb || width <= 0 || height <= 0) {
+    if (error) *error = "write_png_rgb: empty image";
+    return false;
+  }
+  FILE* fp = std::fopen(path.c_str(), "wb");
+  if (!fp) {
+    if (error) *error = "cannot open " + path + " for writing";
+    return false;
+  }
+  std::vector<png_bytep> rows(static_cast<size_t>(height));
+  bool ok = write_png_impl(fp, rgb, width, height, rows.data());
+  if (std::fclose(fp) != 0) ok = false;
+  if (!ok) {
+    if (error) *error = "failed to write PNG " + path;
+    std::remove(path.c_str());
+  }
+  return ok;
+}
+
+}  // namespace efc
