@@ -158,20 +158,6 @@ bool make_dirs(const std::string& path, std::string* error) {
   return true;
 }
 
-bool write_text(const std::string& path, const std::string& text, std::string* error) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    *error = std::strerror(errno);
-    return false;
-  }
-  out << text;
-  out.close();
-  if (!out) {
-    *error = "write failed";
-    return false;
-  }
-  return true;
-}
 
 }  // namespace mjcf
 }  // namespace efc

@@ -55,7 +55,6 @@ Vec3 effect_direction(const Effect& e);
 Vec3 park_position(int serial, double radius);
 
 bool make_dirs(const std::string& path, std::string* error);
-bool write_text(const std::string& path, const std::string& text, std::string* error);
 
 }  // namespace mjcf
 }  // namespace efc

@@ -18,6 +18,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "backends/output_file.h"
 #include "backends/mujoco/mjcf_internal.h"
 #include "backends/mujoco/mjcf_plan.h"
 #include "backends/mujoco/mujoco_backend.h"
@@ -312,7 +313,7 @@ bool write_mujoco_model(const Object& obj, const std::string& dir, const MjcfOpt
     }
   }
   const std::string path = dir + "/" + obj.name + ".xml";
-  if (!mjcf::write_text(path, xml, &error)) {
+  if (!write_text_file(path, xml, &error)) {
     diags.error("E0900", path, 0, 0, "", "cannot write '" + path + "': " + error);
     return false;
   }

@@ -3,6 +3,7 @@
 //   runtime), CMakeLists.txt, README.md.
 // The MJCF itself is mjcf_writer.cc, the table bindings_table.cc, the
 // callbacks callbacks_emitter.cc.
+#include "backends/output_file.h"
 #include "backends/mujoco/mujoco_backend.h"
 
 #include <sstream>
@@ -127,7 +128,7 @@ class MujocoBackend : public Backend {
     std::string error;
     auto put = [&](const std::string& rel, const std::string& text) {
       const std::string path = dir + "/" + rel;
-      if (mjcf::write_text(path, text, &error)) return true;
+      if (write_text_file(path, text, &error)) return true;
       diags.error("E0900", path, 0, 0, "", "cannot write '" + path + "': " + error);
       return false;
     };

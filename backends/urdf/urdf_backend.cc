@@ -9,26 +9,13 @@
 #include <sstream>
 
 #include "backends/backend.h"
+#include "backends/output_file.h"
 #include "compiler/geometry/geometry.h"
 
 namespace efc {
 
 namespace {
 
-bool write_text(const std::string& path, const std::string& text, std::string* error) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) {
-    *error = std::strerror(errno);
-    return false;
-  }
-  out << text;
-  out.close();
-  if (!out) {
-    *error = "write failed";
-    return false;
-  }
-  return true;
-}
 
 std::string readme(const Object& obj, const urdf::Plan& plan) {
   using urdf::num;
@@ -106,13 +93,13 @@ bool write_urdf_model(const Object& obj, const std::string& dir, Diagnostics& di
       return fail(path, "cannot write mesh '" + path + "': " + error);
   }
   const std::string path = dir + "/" + urdf::urdf_file_name(obj);
-  if (!write_text(path, urdf::write_urdf(obj, plan), &error))
+  if (!write_text_file(path, urdf::write_urdf(obj, plan), &error))
     return fail(path, "cannot write '" + path + "': " + error);
   const std::string side = dir + "/" + urdf::sidecar_file_name(obj);
-  if (!write_text(side, urdf::write_sidecar(obj, plan), &error))
+  if (!write_text_file(side, urdf::write_sidecar(obj, plan), &error))
     return fail(side, "cannot write '" + side + "': " + error);
   const std::string rd = dir + "/README.md";
-  if (!write_text(rd, readme(obj, plan), &error)) return fail(rd, "cannot write '" + rd + "': " + error);
+  if (!write_text_file(rd, readme(obj, plan), &error)) return fail(rd, "cannot write '" + rd + "': " + error);
   for (const urdf::Plan::Warning& w : plan.warnings)
     diags.warning("W0900", obj.file, w.loc.line, w.loc.col, w.loc.pointer, w.message);
   if (urdf_path) *urdf_path = path;

@@ -20,6 +20,23 @@ void add_common(CLI::App* cmd, CommonOptions* common, std::string* format) {
                 "let mesh paths be absolute (they may never leave the spec's folder otherwise)");
 }
 
+}  // namespace
+
+bool check_timing(const char* command, double duration, double dt) {
+  if (!(duration > 0) || duration > 1e5) {
+    std::cerr << command << ": --duration must be a positive number of seconds (at most 1e5)\n";
+    return false;
+  }
+  if (!(dt > 0) || dt > 0.1 || dt > duration || duration / dt > 5e7) {
+    std::cerr << command << ": --dt must be in (0, 0.1] seconds, not exceed --duration, and give "
+                            "at most 50 million steps\n";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
 int cmd_play(const std::string& spec, const std::string& profile_text, double duration, double dt,
              const std::string& csv, const std::string& render, const std::string& plot, double fps,
              const CommonOptions& common) {
@@ -28,18 +45,7 @@ int cmd_play(const std::string& spec, const std::string& profile_text, double du
     diags.print(std::cerr, common.json_diagnostics);
     return rc;
   };
-  if (!(duration > 0) || duration > 1e5) {
-    std::cerr << "efc play: --duration must be a positive number of seconds\n";
-    return 2;
-  }
-  if (!(dt > 0) || dt > 0.1 || dt > duration) {
-    std::cerr << "efc play: --dt must be in (0, 0.1] seconds and not exceed --duration\n";
-    return 2;
-  }
-  if (duration / dt > 5e7) {
-    std::cerr << "efc play: --duration / --dt is more than 50 million steps\n";
-    return 2;
-  }
+  if (!check_timing("efc play", duration, dt)) return 2;
   PlayOptions opts;
   std::string error;
   int line = 0;

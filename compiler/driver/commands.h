@@ -13,6 +13,11 @@ struct CommonOptions {
 
 int run_cli(int argc, char** argv);
 
+// --duration and --dt of play and parity: a positive duration (at most 1e5 s),
+// 0 < dt <= 0.1 s and dt <= duration, at most 50 million steps. Prints why
+// not (prefixed with `command`) and returns false when they are unusable.
+bool check_timing(const char* command, double duration, double dt);
+
 int cmd_check(const std::vector<std::string>& specs, bool dump_ir, const CommonOptions& common);
 int cmd_compile(const std::vector<std::string>& specs, const std::vector<std::string>& targets,
                 const std::string& out_dir, const CommonOptions& common);

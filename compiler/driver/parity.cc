@@ -204,15 +204,7 @@ int cmd_parity(const std::string& spec, const std::string& profile_text, double 
     diags.print(std::cerr, common.json_diagnostics);
     return rc;
   };
-  if (!(duration > 0) || duration > 1e5) {
-    std::cerr << "efc parity: --duration must be a positive number of seconds\n";
-    return 2;
-  }
-  if (!(dt > 0) || dt > 0.1 || dt > duration || duration / dt > 5e7) {
-    std::cerr << "efc parity: --dt must be in (0, 0.1] seconds, not exceed --duration, and give at "
-                 "most 50 million steps\n";
-    return 2;
-  }
+  if (!check_timing("efc parity", duration, dt)) return 2;
   PlayOptions opts;
   std::string error;
   int line = 0;
