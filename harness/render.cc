@@ -11,11 +11,11 @@
 namespace efc {
 namespace {
 
-struct MujocoError : std::runtime_error {
+struct RenderMujocoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-void throwing_error_handler(const char* msg) { throw MujocoError(msg ? msg : "MuJoCo error"); }
+void throwing_error_handler(const char* msg) { throw RenderMujocoError(msg ? msg : "MuJoCo error"); }
 
 // Installs a throwing mju_user_error for the duration of a renderer call, so a
 // MuJoCo error inside rendering becomes a failure we report instead of an exit

@@ -35,11 +35,11 @@ std::string scene_xml(double light_diffuse, bool with_camera, const std::string&
     )" + extra_visual + R"(
   </visual>
   <worldbody>
-    <light name="lamp" pos="0 -1 1.5" dir="0 0.6 -1" directional="false" diffuse=")" +
+    <light name="lamp" pos="0 -1.5 1" dir="0 1 -0.4" directional="true" diffuse=")" +
                     std::string(light) + R"(" specular="0 0 0" ambient="0 0 0"/>
 )";
   if (with_camera)
-    xml += R"(    <camera name="efc_camera" pos="0 -1.5 0.2" xyaxes="1 0 0 0 0.13 1"/>
+    xml += R"(    <camera name="efc_camera" pos="0 -1.2 0.2" xyaxes="1 0 0 0 0.17 1"/>
 )";
   xml += R"(    <body name="thing" pos="0 0 0">
       <geom name="box" type="box" size="0.2 0.2 0.2" rgba="0.9 0.3 0.1 1"/>
