@@ -49,6 +49,26 @@ const std::vector<CodeInfo>& all_codes() {
        "value wins, so efc refuses both.\n"
        "  {\"name\": \"lid\", \"mass\": 0.2, \"mass\": 0.3}\n"
        "Fix: keep one of them."},
+      {"E0010", "DSL syntax error",
+       "A .efc file does not follow the grammar (grammar/efc.ebnf) at the reported\n"
+       "position: a missing '{' or '}', a missing comma in a vector, two statements\n"
+       "on one line without ';', a value where a field name belongs. The parser\n"
+       "goes on at the next statement, so every syntax error is listed at once.\n"
+       "  box { size (1, 2 3) cm }          <- missing ','\n"
+       "  box { size 1 } mass 2             <- missing ';' or line break\n"
+       "Fix: correct the syntax at the caret; `efc fmt` shows the canonical layout."},
+      {"E0011", "invalid token",
+       "A .efc file holds something that is not a token of the language: an\n"
+       "unterminated string, an unknown escape, a number like 1. or 01, a character\n"
+       "such as @ or a single quote.\n"
+       "  description \"a lamp            <- the string is not closed on its line\n"
+       "Fix: close strings on the line they start; numbers are written as in JSON."},
+      {"E0012", "unknown unit",
+       "A number in a .efc file is followed by a word that is not a unit. Units:\n"
+       "m cm mm (lengths), rad deg (angles), kg, s, C K (temperature), lm (light),\n"
+       "L/min (liquid flow), m/s (speed). A bare number is in the field's SI unit.\n"
+       "  mass 3 kgs\n"
+       "Fix: write one of the units above (mass 3 kg), or none."},
       // ---------------------------------------------------------------- E01xx
       {"E0101", "wrong type",
        "A value has the wrong JSON type: a string where a number is expected, an\n"
@@ -149,6 +169,15 @@ const std::vector<CodeInfo>& all_codes() {
        "A part's geometry has zero volume (a flat mesh with no convex hull, for\n"
        "example), so it has no inertia a simulator could use.\n"
        "Fix: give the part a solid shape."},
+      {"E0131", "unit does not fit the field",
+       "A .efc number carries a unit of the wrong kind for its field: a mass where an\n"
+       "angle belongs, a length on a revolute joint's range, any unit on a unitless\n"
+       "field (axis, direction, colours, gain, stiffness). Joint positions are\n"
+       "angles for revolute and continuous joints and lengths for prismatic ones; a\n"
+       "mapping's threshold follows its receptor's joint, an effect range its effect.\n"
+       "  joint revolute on base { range 0 .. 40 mm }\n"
+       "  mapping step { threshold 3 kg }\n"
+       "Fix: write the number in a unit the message lists, or bare (SI)."},
       // ---------------------------------------------------------------- E02xx
       {"E0201", "no root part",
        "Every part has a joint, so nothing is fixed to the world. Exactly one part,\n"

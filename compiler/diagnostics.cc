@@ -1,6 +1,7 @@
 #include "compiler/diagnostics.h"
 
 #include <ostream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -9,13 +10,13 @@ namespace efc {
 void Diagnostics::error(std::string code, std::string file, int line, int col,
                         std::string pointer, std::string message, std::string hint) {
   items_.push_back({Severity::Error, std::move(code), std::move(file), line, col,
-                    std::move(pointer), std::move(message), std::move(hint)});
+                    std::move(pointer), std::move(message), std::move(hint), {}});
 }
 
 void Diagnostics::warning(std::string code, std::string file, int line, int col,
                           std::string pointer, std::string message, std::string hint) {
   items_.push_back({Severity::Warning, std::move(code), std::move(file), line, col,
-                    std::move(pointer), std::move(message), std::move(hint)});
+                    std::move(pointer), std::move(message), std::move(hint), {}});
 }
 
 bool Diagnostics::has_errors() const { return error_count() > 0; }
@@ -51,6 +52,21 @@ std::string format_text(const Diagnostic& d) {
   out += severity_name(d.severity);
   if (!d.code.empty()) out += "[" + d.code + "]";
   out += ": " + d.message + "\n";
+  if (!d.source_line.empty() && d.line > 0) {
+    // The line, then a caret under the column (columns count code points;
+    // tabs are kept so the caret lines up in a terminal).
+    const std::string number = std::to_string(d.line);
+    out += "  " + number + " | " + d.source_line + "\n";
+    out += "  " + std::string(number.size(), ' ') + " | ";
+    int col = 1;
+    for (size_t i = 0; i < d.source_line.size() && col < d.col; ++i) {
+      unsigned char c = static_cast<unsigned char>(d.source_line[i]);
+      if ((c & 0xC0) == 0x80) continue;
+      out += c == '\t' ? '\t' : ' ';
+      ++col;
+    }
+    out += "^\n";
+  }
   if (!d.pointer.empty()) out += "  at " + d.pointer + "\n";
   if (!d.hint.empty()) out += "  hint: " + d.hint + "\n";
   return out;
@@ -67,6 +83,25 @@ std::string format_json(const Diagnostic& d) {
   if (!d.hint.empty()) j["hint"] = d.hint;
   // Replace invalid UTF-8 rather than throw: messages may quote user bytes.
   return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+void Diagnostics::attach_source_lines(const std::string& file, std::string_view text) {
+  // Line start offsets, computed once.
+  std::vector<size_t> starts{0};
+  for (size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '\n') starts.push_back(i + 1);
+  for (auto& d : items_) {
+    if (d.file != file || d.line <= 0 || static_cast<size_t>(d.line) > starts.size() ||
+        !d.source_line.empty())
+      continue;
+    size_t begin = starts[d.line - 1];
+    size_t end = text.find('\n', begin);
+    std::string line(text.substr(begin, end == std::string_view::npos ? text.size() - begin
+                                                                      : end - begin));
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.size() > 200) continue;  // a minified file: the caret would not help
+    d.source_line = std::move(line);
+  }
 }
 
 void Diagnostics::print(std::ostream& os, bool json_lines) const {

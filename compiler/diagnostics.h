@@ -5,6 +5,7 @@
 
 #include <iosfwd>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace efc {
@@ -19,6 +20,9 @@ struct Diagnostic {
   std::string pointer;  // JSON pointer of the field ("" = whole document)
   std::string message;
   std::string hint;     // optional
+  // The source line the position points into, shown under the message with a
+  // caret (set for .efc files; see Diagnostics::attach_source_lines).
+  std::string source_line;
 };
 
 class Diagnostics {
@@ -34,6 +38,8 @@ class Diagnostics {
   size_t warning_count() const;
   const std::vector<Diagnostic>& items() const { return items_; }
   void clear() { items_.clear(); }
+  // Sets source_line on every diagnostic in `file` with a line, from `text`.
+  void attach_source_lines(const std::string& file, std::string_view text);
 
   // Text (compiler style) or JSON lines.
   void print(std::ostream& os, bool json_lines) const;

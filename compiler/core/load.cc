@@ -12,18 +12,25 @@ std::optional<Object> load_spec(const std::string& path, const LoadOptions& opts
   ReadOptions read_opts;
   read_opts.allow_absolute_paths = opts.allow_absolute_paths;
   bool io = false;
-  std::optional<Object> obj = read_json_file(path, read_opts, diags, &io);
+  std::string text;
+  std::optional<Object> obj = read_spec_file(path, read_opts, diags, &io, &text);
   if (io_error) *io_error = io;
   if (!obj) return std::nullopt;
+  // The checks' diagnostics point into a .efc file too: show its lines.
+  auto finish = [&](bool ok) -> std::optional<Object> {
+    if (is_dsl_path(path)) diags.attach_source_lines(path, text);
+    if (!ok) return std::nullopt;
+    return obj;
+  };
   // Shape errors and structural errors are reported together: the checks run
   // on whatever the reader could build, so one run shows every problem.
   check_structure(*obj, diags);
-  if (diags.has_errors()) return std::nullopt;
+  if (diags.has_errors()) return finish(false);
   resolve(*obj, diags);
-  if (diags.has_errors()) return std::nullopt;
+  if (diags.has_errors()) return finish(false);
   check_resolved(*obj, diags);
-  if (diags.has_errors()) return std::nullopt;
-  return obj;
+  if (diags.has_errors()) return finish(false);
+  return finish(true);
 }
 
 }  // namespace efc

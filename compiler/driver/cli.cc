@@ -95,7 +95,7 @@ int run_cli(int argc, char** argv) {
   std::vector<std::string> specs;
   bool dump_ir = false;
   CLI::App* check = app.add_subcommand("check", "read and type-check specs; write nothing");
-  check->add_option("SPEC", specs, "spec files (.json)")->required();
+  check->add_option("SPEC", specs, "spec files (.json or .efc)")->required();
   check->add_flag("--dump-ir", dump_ir, "print the resolved IR (every default filled) as JSON");
   add_common(check, &common, &format);
 
@@ -104,7 +104,7 @@ int run_cli(int argc, char** argv) {
   std::string target_help = "target: all";
   for (const Backend* b : all_backends()) target_help += std::string(", ") + b->name();
   CLI::App* compile = app.add_subcommand("compile", "compile specs for simulators");
-  compile->add_option("SPEC", specs, "spec files (.json)")->required();
+  compile->add_option("SPEC", specs, "spec files (.json or .efc)")->required();
   compile->add_option("--target,-t", targets, target_help)->required();
   compile->add_option("-o,--output", out_dir, "output folder")->required();
   add_common(compile, &common, &format);
@@ -133,6 +133,20 @@ int run_cli(int argc, char** argv) {
   parity->add_option("--csv-dir", csv_dir, "also write mujoco.csv, bullet.csv, receptors.csv into DIR");
   add_common(parity, &common, &format);
 
+  std::vector<std::string> fmt_files;
+  bool fmt_check = false;
+  CLI::App* fmt = app.add_subcommand("fmt", "rewrite .efc (and .json) specs in canonical form");
+  fmt->add_option("FILE", fmt_files, "spec files (.efc or .json)")->required();
+  fmt->add_flag("--check", fmt_check, "change nothing; exit 1 if a file would change");
+  add_common(fmt, &common, &format);
+
+  std::string convert_in, convert_out;
+  CLI::App* convert = app.add_subcommand(
+      "convert", "convert a spec between JSON and the DSL (by extension: .json, .efc)");
+  convert->add_option("IN", convert_in, "input spec (.json or .efc)")->required();
+  convert->add_option("-o,--output", convert_out, "output file (.efc or .json)")->required();
+  add_common(convert, &common, &format);
+
   std::string code;
   bool list = false;
   CLI::App* explain = app.add_subcommand("explain", "explain a diagnostic code (e.g. E0203)");
@@ -152,6 +166,8 @@ int run_cli(int argc, char** argv) {
   if (*playc) return cmd_play(spec, profile, duration, dt, csv, render, plot, fps, common);
   if (*parity) return cmd_parity(spec, profile, duration, dt, bullet_exe, csv_dir, common);
   if (*explain) return cmd_explain(code, list);
+  if (*fmt) return cmd_fmt(fmt_files, fmt_check, common);
+  if (*convert) return cmd_convert(convert_in, convert_out, common);
   return 2;
 }
 

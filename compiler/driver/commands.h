@@ -22,6 +22,9 @@ int cmd_check(const std::vector<std::string>& specs, bool dump_ir, const CommonO
 int cmd_compile(const std::vector<std::string>& specs, const std::vector<std::string>& targets,
                 const std::string& out_dir, const CommonOptions& common);
 int cmd_explain(const std::string& code, bool list);
+// efc fmt and efc convert (fmt_convert.cc).
+int cmd_fmt(const std::vector<std::string>& files, bool check_only, const CommonOptions& common);
+int cmd_convert(const std::string& in, const std::string& out, const CommonOptions& common);
 // efc parity: the MuJoCo harness against the compiled Bullet program (parity.cc).
 int cmd_parity(const std::string& spec, const std::string& profile, double duration, double dt,
                const std::string& bullet_exe, const std::string& csv_dir, const CommonOptions& common);

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "compiler/frontend/dsl.h"
 #include "compiler/frontend/positioned_json.h"
 #include "compiler/frontend/spec_builder.h"
 
@@ -22,13 +23,13 @@ bool is_valid_name(std::string_view name) {
   return true;
 }
 
-std::optional<Object> read_json_text(std::string_view text, const std::string& file,
-                                     const std::string& base_dir, const ReadOptions& opts,
-                                     Diagnostics& diags) {
-  // Collected locally so they can be put in file order (the DOM's objects
-  // iterate keys alphabetically, not as written).
-  Diagnostics local;
-  auto parsed = frontend::parse_positioned(text, file, opts.max_depth, local);
+namespace {
+
+// A parsed document -> the IR with shape checks; diagnostics in file order.
+std::optional<Object> build_from(std::optional<frontend::PositionedJson> parsed,
+                                 Diagnostics& local, const std::string& file,
+                                 const std::string& base_dir, const ReadOptions& opts,
+                                 Diagnostics& diags) {
   std::optional<Object> result;
   if (parsed) {
     Object obj;
@@ -38,6 +39,7 @@ std::optional<Object> read_json_text(std::string_view text, const std::string& f
     frontend::build_object(parsed->value, obj, opts, local);
     result = std::move(obj);
   }
+  // Put in file order (the DOM's objects iterate keys alphabetically, not as written).
   std::vector<Diagnostic> items = local.items();
   std::stable_sort(items.begin(), items.end(), [](const Diagnostic& a, const Diagnostic& b) {
     return std::make_pair(a.line, a.col) < std::make_pair(b.line, b.col);
@@ -49,13 +51,34 @@ std::optional<Object> read_json_text(std::string_view text, const std::string& f
   return result;
 }
 
-std::optional<Object> read_json_file(const std::string& path, const ReadOptions& opts,
-                                     Diagnostics& diags, bool* io_error) {
+}  // namespace
+
+std::optional<Object> read_json_text(std::string_view text, const std::string& file,
+                                     const std::string& base_dir, const ReadOptions& opts,
+                                     Diagnostics& diags) {
+  Diagnostics local;
+  auto parsed = frontend::parse_positioned(text, file, opts.max_depth, local);
+  return build_from(std::move(parsed), local, file, base_dir, opts, diags);
+}
+
+bool is_dsl_path(const std::string& path) {
+  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".efc") == 0;
+}
+
+std::optional<Object> read_spec_text(std::string_view text, const std::string& file,
+                                     const std::string& base_dir, const ReadOptions& opts,
+                                     Diagnostics& diags) {
+  if (!is_dsl_path(file)) return read_json_text(text, file, base_dir, opts, diags);
+  Diagnostics local;
+  auto parsed = dsl::parse(text, file, opts.max_depth, local);
+  local.attach_source_lines(file, text);
+  return build_from(std::move(parsed), local, file, base_dir, opts, diags);
+}
+
+std::optional<std::string> read_text_file(const std::string& path, Diagnostics& diags) {
   namespace fs = std::filesystem;
-  if (io_error) *io_error = false;
-  auto fail = [&](const std::string& why) -> std::optional<Object> {
+  auto fail = [&](const std::string& why) -> std::optional<std::string> {
     diags.error("E0001", path, 0, 0, "", "cannot read '" + path + "': " + why);
-    if (io_error) *io_error = true;
     return std::nullopt;
   };
   std::error_code ec;
@@ -67,9 +90,28 @@ std::optional<Object> read_json_file(const std::string& path, const ReadOptions&
   std::ostringstream ss;
   ss << in.rdbuf();
   if (in.bad()) return fail("read error");
+  return ss.str();
+}
+
+std::optional<Object> read_spec_file(const std::string& path, const ReadOptions& opts,
+                                     Diagnostics& diags, bool* io_error, std::string* text_out) {
+  namespace fs = std::filesystem;
+  if (io_error) *io_error = false;
+  auto text = read_text_file(path, diags);
+  if (!text) {
+    if (io_error) *io_error = true;
+    return std::nullopt;
+  }
   std::string base = fs::path(path).parent_path().string();
   if (base.empty()) base = ".";
-  return read_json_text(ss.str(), path, base, opts, diags);
+  auto obj = read_spec_text(*text, path, base, opts, diags);
+  if (text_out) *text_out = std::move(*text);
+  return obj;
+}
+
+std::optional<Object> read_json_file(const std::string& path, const ReadOptions& opts,
+                                     Diagnostics& diags, bool* io_error) {
+  return read_spec_file(path, opts, diags, io_error);
 }
 
 }  // namespace efc

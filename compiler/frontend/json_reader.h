@@ -36,6 +36,25 @@ std::optional<Object> read_json_text(std::string_view text, const std::string& f
 std::optional<Object> read_json_file(const std::string& path, const ReadOptions& opts,
                                      Diagnostics& diags, bool* io_error);
 
+// ---- Either format, chosen by the file's extension: `.efc` is the DSL
+// (grammar/efc.ebnf, compiler/frontend/dsl.h), anything else JSON.
+bool is_dsl_path(const std::string& path);
+
+// read_json_text for JSON, the DSL parser + the same shape checks for .efc.
+// For .efc files every diagnostic in `file` carries its source line.
+std::optional<Object> read_spec_text(std::string_view text, const std::string& file,
+                                     const std::string& base_dir, const ReadOptions& opts,
+                                     Diagnostics& diags);
+
+// Reads a file of either format. Sets *io_error (exit code 2) when the file
+// cannot be read; *text (when given) receives its contents.
+std::optional<Object> read_spec_file(const std::string& path, const ReadOptions& opts,
+                                     Diagnostics& diags, bool* io_error,
+                                     std::string* text = nullptr);
+
+// The whole file as text, or nullopt with error E0001 (exit code 2).
+std::optional<std::string> read_text_file(const std::string& path, Diagnostics& diags);
+
 // True when `name` matches ^[A-Za-z_][A-Za-z0-9_]{0,63}$ (names reach XML, C++, Python).
 bool is_valid_name(std::string_view name);
 

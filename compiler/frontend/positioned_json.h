@@ -32,6 +32,9 @@ struct PositionedJson {
 // "key:", pointers are "" or start with '/').
 inline std::string key_position(const std::string& pointer) { return "key:" + pointer; }
 
+// Offset of the first byte that is not well-formed UTF-8, or npos.
+size_t first_invalid_utf8(std::string_view s);
+
 // "/a" + "b/c" -> "/a/b~1c" (RFC 6901 escaping).
 std::string pointer_append(const std::string& base, std::string_view token);
 
