@@ -8,6 +8,7 @@
 // per line; a block whose statements are all one-liners goes on one line when
 // it fits in 80 columns; a blank line between multi-line items of the object.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -68,6 +69,37 @@ std::string quoted(const std::string& s) {
 }
 std::string json_literal(const json& v) {
   return v.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+// A scalar as JSON; integral floats are written as integers (2, not 2.0),
+// so the text does not depend on whether the document came from JSON or DSL.
+std::string json_scalar(const json& v) {
+  if (v.is_number_float()) {
+    const double d = v.get<double>();
+    if (std::isfinite(d) && d == std::floor(d) && std::fabs(d) <= 9007199254740992.0 &&
+        !(d == 0 && std::signbit(d)))
+      return std::to_string(static_cast<long long>(d));
+  }
+  return json_literal(v);
+}
+
+// Compact JSON for x- values and fallbacks, numbers as json_scalar writes them.
+std::string compact_json(const json& v) {
+  if (v.is_object()) {
+    std::string out = "{";
+    bool first = true;
+    for (auto it = v.begin(); it != v.end(); ++it) {
+      out += (first ? "" : ", ") + quoted(it.key()) + ": " + compact_json(it.value());
+      first = false;
+    }
+    return out + "}";
+  }
+  if (v.is_array()) {
+    std::string out = "[";
+    for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + compact_json(v[i]);
+    return out + "]";
+  }
+  return json_scalar(v);
 }
 
 std::string key_text(const std::string& key, Ctx ctx) {
@@ -350,7 +382,7 @@ class Printer {
     s.pointers = {join_pointer(path)};
     const std::string k = key_text(key, ctx);
     if (key.rfind("x-", 0) == 0) {
-      s.head = k + " " + json_literal(v);
+      s.head = k + " " + compact_json(v);
       return s;
     }
     if (v.is_object()) {
@@ -373,7 +405,7 @@ class Printer {
       if (v.is_number_integer() || v.is_number_unsigned()) {
         // Exact integers beyond a double's 53 bits keep their digits (no unit).
         const double d = v.get<double>();
-        if (json(d) != v || std::fabs(d) > 9007199254740992.0) return json_literal(v);
+        if (std::fabs(d) > 9007199254740992.0) return json_literal(v);
       }
       Spelled sp = spell({v.get<double>()}, field_dimension(doc_, path));
       return sp.numbers[0] + (sp.unit.empty() ? "" : " " + sp.unit);
@@ -394,7 +426,7 @@ class Printer {
       for (size_t i = 0; i < sp.numbers.size(); ++i) out += (i ? ", " : "") + sp.numbers[i];
       return out + ")" + unit;
     }
-    return json_literal(v);  // true, false, null, [], lists of other things
+    return compact_json(v);  // true, false, null, [], lists of other things
   }
 
   // ------------------------------------------------------------ layout
@@ -480,11 +512,12 @@ void write_json(const json& v, const std::string& container, int indent, std::st
     const bool scalars = std::all_of(v.begin(), v.end(), [](const json& e) {
       return !e.is_object() && !e.is_array();
     });
-    std::string flat = json_literal(v);
-    if (v.empty() || (scalars && flat.size() <= 80)) {
+    size_t flat = 2;
+    for (const auto& e : v) flat += json_literal(e).size() + 2;
+    if (v.empty() || (scalars && flat <= 80)) {
       // [1, 2, 3] rather than [1,2,3]
       out += "[";
-      for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + json_literal(v[i]);
+      for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + json_scalar(v[i]);
       out += "]";
       return;
     }
@@ -497,7 +530,7 @@ void write_json(const json& v, const std::string& container, int indent, std::st
     out += pad + "]";
     return;
   }
-  out += json_literal(v);
+  out += json_scalar(v);
 }
 
 }  // namespace
