@@ -71,8 +71,11 @@ std::optional<Object> read_spec_text(std::string_view text, const std::string& f
   if (!is_dsl_path(file)) return read_json_text(text, file, base_dir, opts, diags);
   Diagnostics local;
   auto parsed = dsl::parse(text, file, opts.max_depth, local);
-  local.attach_source_lines(file, text);
-  return build_from(std::move(parsed), local, file, base_dir, opts, diags);
+  Diagnostics built;
+  auto obj = build_from(std::move(parsed), local, file, base_dir, opts, built);
+  built.attach_source_lines(file, text);
+  for (const auto& d : built.items()) diags.add(d);
+  return obj;
 }
 
 std::optional<std::string> read_text_file(const std::string& path, Diagnostics& diags) {
