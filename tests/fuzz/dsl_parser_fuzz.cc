@@ -4,6 +4,7 @@
 //   diagnostic with a catalogued code and a position inside the text.
 // When parse returns a document, three oracles:
 //   round trip   print(doc) must parse again, to the same value (dsl.h: parse(print(doc)) == doc)
+//   comments     print(doc, comments) too, and keeps every comment (`efc fmt` loses none)
 //   JSON twin    print_json(doc) must be JSON the JSON reader's parser reads to the same value
 //   checks       the document goes through build_object and check_structure as
 //                the JSON reader's would (positions into the .efc text), and
@@ -35,8 +36,9 @@ std::string diagnostics_text(const efc::Diagnostics& diags) {
 
 void run(std::string_view text) {
   efc::Diagnostics diags;
+  efc::dsl::CommentMap comments;
   std::optional<efc::frontend::PositionedJson> doc =
-      efc::dsl::parse(text, "fuzz.efc", kMaxDepth, diags);
+      efc::dsl::parse_with_comments(text, "fuzz.efc", kMaxDepth, diags, &comments);
   efc_fuzz::check_diagnostics(diags, text, !doc, "dsl::parse");
   if (!doc) return;
   if (diags.has_errors()) efc_fuzz::fail("dsl::parse returned a document with errors", text);
@@ -55,6 +57,22 @@ void run(std::string_view text) {
                        "\n--- printed\n" + printed + "\n--- reparsed\n" + again->value.dump(1) +
                        "\n--- patch document -> reparsed\n" +
                        nlohmann::json::diff(doc->value, again->value).dump(1),
+                   text);
+
+  // With the comments put back (efc fmt): the same value, every comment kept.
+  const std::string formatted = efc::dsl::print(doc->value, &comments);
+  efc::Diagnostics fmt_diags;
+  efc::dsl::CommentMap fmt_comments;
+  auto reformatted = efc::dsl::parse_with_comments(formatted, "formatted.efc", kMaxDepth,
+                                                   fmt_diags, &fmt_comments);
+  if (!reformatted || reformatted->value != doc->value)
+    efc_fuzz::fail("print(doc, comments) does not parse back to doc:\n--- document\n" +
+                       doc->value.dump(1) + "\n--- printed with comments\n" + formatted +
+                       "\n--- errors\n" + diagnostics_text(fmt_diags),
+                   text);
+  if (fmt_comments.size() != comments.size())
+    efc_fuzz::fail("print(doc, comments) keeps " + std::to_string(fmt_comments.size()) + " of " +
+                       std::to_string(comments.size()) + " comments:\n--- printed\n" + formatted,
                    text);
 
   // The JSON spelling (efc convert) reads back to the same value.
