@@ -105,6 +105,36 @@ INSTANTIATE_TEST_SUITE_P(Specs, DslGolden,
                            return n;
                          });
 
+// tests/specs/bad_dsl/: the DSL twins (efc convert) of the failing JSON specs
+// in tests/specs/bad/ that are well-formed enough to convert. Each reports the
+// codes its JSON twin's "x-expect" names, located in the .efc file (golden).
+class DslBadTwin : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(DslBadTwin, ReportsTheJsonTwinsCodesAtDslLines) {
+  const std::string name = GetParam();
+  const std::string stem = name.substr(0, name.size() - 4);
+  const fs::path dir = kSource / "tests/specs/bad_dsl";
+  const CliRun r = run_efc("check tests/specs/bad_dsl/" + name);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  if (std::getenv("EFC_UPDATE_GOLDEN")) {
+    std::ofstream(dir / (stem + ".expected"), std::ios::binary) << r.err;
+    return;
+  }
+  EXPECT_EQ(r.err, slurp(dir / (stem + ".expected")));
+  const json twin = json::parse(slurp(kSource / "tests/specs/bad" / (stem + ".json")));
+  ASSERT_TRUE(twin.contains("x-expect")) << stem;
+  for (const auto& e : twin["x-expect"]) {
+    const std::string code = e["code"].get<std::string>();
+    EXPECT_NE(r.err.find("error[" + code + "]"), std::string::npos) << code << "\n" << r.err;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Specs, DslBadTwin,
+                         ::testing::ValuesIn(files_with(kSource / "tests/specs/bad_dsl", ".efc")),
+                         [](const auto& info) {
+                           return info.param.substr(0, info.param.size() - 4);
+                         });
+
 TEST(DslGolden, EveryDslCodeHasAGoldenFile) {
   const auto files = files_with(kSource / "tests/specs/dsl", ".efc");
   for (const char* code : {"E0002", "E0004", "E0005", "E0006", "E0007", "E0010", "E0011", "E0012",
