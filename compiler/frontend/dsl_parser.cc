@@ -50,6 +50,26 @@ json number_json(double v) {
   return json(v);
 }
 
+// A number token as JSON: an integer literal that fits 64 bits stays an exact
+// integer (a double cannot hold 2^53 + 1); anything else is number_json(v).
+json literal_json(const Token& t, double v) {
+  if (t.text.find_first_of(".eE") == std::string::npos) {
+    errno = 0;
+    char* end = nullptr;
+    if (t.text[0] == '-') {
+      long long i = std::strtoll(t.text.c_str(), &end, 10);
+      if (errno == 0 && *end == '\0' && i != 0) return json(static_cast<std::int64_t>(i));
+    } else {
+      unsigned long long u = std::strtoull(t.text.c_str(), &end, 10);
+      if (errno == 0 && *end == '\0') {
+        if (u <= 9223372036854775807ULL) return json(static_cast<std::int64_t>(u));
+        return json(static_cast<std::uint64_t>(u));
+      }
+    }
+  }
+  return number_json(v);
+}
+
 struct UnitUse {
   std::vector<std::string> path;  // of the number, or of the array for ranges and vectors
   std::string pointer;
@@ -694,7 +714,7 @@ class Parser {
     set_pos(p, first);
     if (!at(Tok::DotDot)) {
       if (!ua.empty()) units_.push_back({path_of(p), p, {a}, {true}, ua, ua_tok->line, ua_tok->col});
-      target[key] = number_json(a);
+      target[key] = literal_json(first, a);
       return true;
     }
     take();  // ..
@@ -716,7 +736,7 @@ class Parser {
                "write both ends in one unit");
       return false;
     }
-    json arr = json::array({number_json(a), number_json(b)});
+    json arr = json::array({literal_json(first, a), literal_json(second, b)});
     out_.positions[p + "/0"] = {first.line, first.col};
     out_.positions[p + "/1"] = {second.line, second.col};
     if (!ua.empty() || !ub.empty()) {
@@ -745,7 +765,7 @@ class Parser {
         double v = 0;
         if (!read_number(t, &v)) return false;
         out_.positions[p + "/" + std::to_string(arr.size())] = {t.line, t.col};
-        arr.push_back(number_json(v));
+        arr.push_back(literal_json(t, v));
         raw.push_back(v);
         if (at(Tok::Comma)) {
           take();
@@ -898,9 +918,11 @@ class Parser {
   // Checks each written unit against its field's dimension and converts the
   // numbers to the spec's SI values in place.
   void apply_units() {
+    if (units_.empty()) return;
+    const FieldDimensions dims(out_.value);
     for (const UnitUse& u : units_) {
       const Unit* unit = find_unit(u.unit);
-      const Dim dim = field_dimension(out_.value, u.path);
+      const Dim dim = dims.of(u.path);
       if (!unit_fits(*unit, dim)) {
         std::string field = u.path.empty() ? std::string("this field") : "'" + u.path.back() + "'";
         error_at("E0131", u.line, u.col, u.pointer,

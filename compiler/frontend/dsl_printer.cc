@@ -102,6 +102,16 @@ std::string compact_json(const json& v) {
   return json_scalar(v);
 }
 
+// True when a double holds the number exactly (integers beyond 2^53 may not).
+bool exact_as_double(const json& v) {
+  if (v.is_number_integer() && !v.is_number_unsigned()) {
+    const std::int64_t i = v.get<std::int64_t>();
+    return i >= -9007199254740992LL && i <= 9007199254740992LL;
+  }
+  if (v.is_number_unsigned()) return v.get<std::uint64_t>() <= 9007199254740992ULL;
+  return v.is_number();
+}
+
 std::string key_text(const std::string& key, Ctx ctx) {
   // `part` and `function` are quoted everywhere: at the start of a line the
   // parser takes them for a new part or function after a missing '}'.
@@ -161,7 +171,8 @@ struct Stmt {
 
 class Printer {
  public:
-  Printer(const json& doc, const CommentMap* comments) : doc_(doc), comments_(comments) {}
+  Printer(const json& doc, const CommentMap* comments)
+      : doc_(doc), comments_(comments), dims_(doc) {}
 
   std::string run() {
     std::vector<Stmt> top;
@@ -402,24 +413,17 @@ class Printer {
   std::string value_text(const std::string& key, const json& v,
                          const std::vector<std::string>& path) {
     if (v.is_number()) {
-      if (v.is_number_integer() || v.is_number_unsigned()) {
-        // Exact integers beyond a double's 53 bits keep their digits (no unit).
-        const double d = v.get<double>();
-        if (std::fabs(d) > 9007199254740992.0) return json_literal(v);
-      }
-      Spelled sp = spell({v.get<double>()}, field_dimension(doc_, path));
+      // Integers beyond a double's 53 bits keep their digits (bare: SI).
+      if (!exact_as_double(v)) return json_literal(v);
+      Spelled sp = spell({v.get<double>()}, dims_.of(path));
       return sp.numbers[0] + (sp.unit.empty() ? "" : " " + sp.unit);
     }
     if (v.is_string()) return quoted(v.get<std::string>());
     if (v.is_array() && !v.empty() &&
-        std::all_of(v.begin(), v.end(), [](const json& e) {
-          if (!e.is_number()) return false;
-          const double d = e.get<double>();
-          return json(d) == e && std::fabs(d) <= 9007199254740992.0;
-        })) {
+        std::all_of(v.begin(), v.end(), [](const json& e) { return exact_as_double(e); })) {
       std::vector<double> values;
       for (const auto& e : v) values.push_back(e.get<double>());
-      Spelled sp = spell(values, field_dimension(doc_, path));
+      Spelled sp = spell(values, dims_.of(path));
       const std::string unit = sp.unit.empty() ? "" : " " + sp.unit;
       if (key == "range" && values.size() == 2) return sp.numbers[0] + " .. " + sp.numbers[1] + unit;
       std::string out = "(";
@@ -486,6 +490,7 @@ class Printer {
 
   const json& doc_;
   const CommentMap* comments_;
+  const FieldDimensions dims_;
   std::set<std::string> used_;
 };
 

@@ -60,30 +60,6 @@ const json* element(const json* j, const std::string& index) {
 
 std::string string_at(const json* j) { return j && j->is_string() ? j->get<std::string>() : ""; }
 
-// The joint position's dimension of the part named `part`.
-Dim joint_dim(const json& doc, const std::string& part) {
-  const json* parts = member(&doc, "parts");
-  if (!parts || !parts->is_array()) return Dim::Unknown;
-  for (const json& p : *parts) {
-    if (string_at(member(&p, "name")) != part) continue;
-    std::string type = string_at(member(member(&p, "joint"), "type"));
-    if (type == "revolute" || type == "continuous") return Dim::Angle;
-    if (type == "prismatic") return Dim::Length;
-    return Dim::Unknown;
-  }
-  return Dim::Unknown;
-}
-
-Dim effect_dim(const json& doc, const json* function, bool difference) {
-  std::string type = string_at(member(member(function, "effect"), "type"));
-  if (type == "geometry") return joint_dim(doc, string_at(member(function, "effector")));
-  if (type == "illumination") return Dim::Luminous;
-  if (type == "temperature") return difference ? Dim::TemperatureDelta : Dim::Temperature;
-  if (type == "fluid") return Dim::Flow;
-  if (type == "airflow") return Dim::Speed;
-  return Dim::Unknown;
-}
-
 Dim geometry_dim(const std::vector<std::string>& p, size_t i) {
   // p[i] is "geometry"; skip compound elements down to the primitive.
   ++i;
@@ -149,7 +125,37 @@ double to_si(const Unit& u, double v, Dim field) {
   return v;
 }
 
-Dim field_dimension(const json& doc, const std::vector<std::string>& p) {
+FieldDimensions::FieldDimensions(const json& doc) : doc_(doc) {
+  const json* parts = member(&doc, "parts");
+  if (!parts || !parts->is_array()) return;
+  for (const json& p : *parts) {
+    const json* name = member(&p, "name");
+    if (!name || !name->is_string()) continue;
+    std::string type = string_at(member(member(&p, "joint"), "type"));
+    Dim d = Dim::Unknown;
+    if (type == "revolute" || type == "continuous") d = Dim::Angle;
+    if (type == "prismatic") d = Dim::Length;
+    joints_.emplace(name->get<std::string>(), d);  // the first part of a name, as the checks do
+  }
+}
+
+Dim FieldDimensions::joint_dim(const std::string& part) const {
+  auto it = joints_.find(part);
+  return it == joints_.end() ? Dim::Unknown : it->second;
+}
+
+Dim FieldDimensions::effect_dim(const json* function, bool difference) const {
+  std::string type = string_at(member(member(function, "effect"), "type"));
+  if (type == "geometry") return joint_dim(string_at(member(function, "effector")));
+  if (type == "illumination") return Dim::Luminous;
+  if (type == "temperature") return difference ? Dim::TemperatureDelta : Dim::Temperature;
+  if (type == "fluid") return Dim::Flow;
+  if (type == "airflow") return Dim::Speed;
+  return Dim::Unknown;
+}
+
+Dim FieldDimensions::of(const std::vector<std::string>& p) const {
+  const json& doc = doc_;
   if (p.size() == 1 && p[0] == "efc") return Dim::None;
   if (p.size() >= 3 && p[0] == "parts") {
     const json* part = element(member(&doc, "parts"), p[1]);
@@ -164,13 +170,13 @@ Dim field_dimension(const json& doc, const std::vector<std::string>& p) {
     const std::string name = string_at(member(part, "name"));
     if (p.size() == 4) {
       const std::string& g = p[3];
-      if (g == "range" || g == "initial") return joint_dim(doc, name);
+      if (g == "range" || g == "initial") return joint_dim(name);
       if (g == "origin") return Dim::Length;
       if (g == "axis" || g == "damping" || g == "friction") return Dim::None;
       return Dim::Unknown;
     }
     if (p.size() == 5 && p[3] == "spring") {
-      if (p[4] == "rest") return joint_dim(doc, name);
+      if (p[4] == "rest") return joint_dim(name);
       if (p[4] == "stiffness") return Dim::None;
     }
     return Dim::Unknown;
@@ -181,15 +187,15 @@ Dim field_dimension(const json& doc, const std::vector<std::string>& p) {
     const std::string& f = p[3];
     if (block == "mapping" && p.size() == 4) {
       if (f == "threshold" || f == "hysteresis")
-        return joint_dim(doc, string_at(member(fn, "receptor")));
-      if (f == "offset" || f == "initial") return effect_dim(doc, fn, false);
-      if (f == "delta") return effect_dim(doc, fn, true);
+        return joint_dim(string_at(member(fn, "receptor")));
+      if (f == "offset" || f == "initial") return effect_dim(fn, false);
+      if (f == "delta") return effect_dim(fn, true);
       if (f == "gain") return Dim::None;
       return Dim::Unknown;
     }
     if (block != "effect") return Dim::Unknown;
     if (p.size() == 4) {
-      if (f == "range") return effect_dim(doc, fn, false);
+      if (f == "range") return effect_dim(fn, false);
       if (f == "stiffness" || f == "damping" || f == "color") return Dim::None;
       if (f == "position" || f == "droplet_radius" || f == "reach") return Dim::Length;
       if (f == "time_constant") return Dim::Time;
@@ -208,7 +214,11 @@ Dim field_dimension(const json& doc, const std::vector<std::string>& p) {
 
 std::string shortest(double v) {
   char buf[64];
-  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  // Beyond 2^53 a plain digit string would read back as an exact integer
+  // (the parser keeps integer literals exact): write the exponent instead.
+  auto r = std::fabs(v) >= 9007199254740992.0
+               ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific)
+               : std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
 }
 

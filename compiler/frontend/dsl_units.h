@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -39,8 +40,19 @@ bool unit_fits(const Unit& u, Dim d);
 double to_si(const Unit& u, double value, Dim field);
 
 // The dimension of the field at `path` (JSON pointer tokens of the number, or
-// of the array holding a range or vector) in the document.
-Dim field_dimension(const nlohmann::json& doc, const std::vector<std::string>& path);
+// of the array holding a range or vector) in the document. Built once per
+// document: a joint position's dimension needs its part, found by name.
+class FieldDimensions {
+ public:
+  explicit FieldDimensions(const nlohmann::json& doc);
+  Dim of(const std::vector<std::string>& path) const;
+
+ private:
+  Dim joint_dim(const std::string& part) const;
+  Dim effect_dim(const nlohmann::json* function, bool difference) const;
+  const nlohmann::json& doc_;
+  std::unordered_map<std::string, Dim> joints_;  // part name -> its joint position's dimension
+};
 
 // The shortest decimal text that reads back as exactly `v` ("0.1", "1e-07").
 std::string shortest(double v);
