@@ -191,6 +191,30 @@ class Parser {
     statements_.push_back({pointer, first.line, first.col, first.offset});
   }
 
+  // A value written in a statement's header (a part's name, a joint's type):
+  // the key and the value are both located at its token.
+  void header_field(json& node, const std::string& pointer, const char* key, const Token& t) {
+    node[key] = t.text;
+    set_pos(pointer + "/" + key, t);
+    set_key_pos(pointer + "/" + key, t);
+  }
+
+  // The "parts" or "functions" list of the object, created at its first
+  // element; nullptr (reported) when the key holds something else already.
+  json* list_for(json& root, const std::string& pointer, const char* key, const Token& kw) {
+    const std::string p = pointer_append(pointer, key);
+    if (!root.contains(key)) {
+      root[key] = json::array();
+      set_key_pos(p, kw);
+      set_pos(p, kw);
+    } else if (!root[key].is_array()) {
+      error_at("E0007", kw.line, kw.col, p, std::string("duplicate key '") + key + "'",
+               "keep one of them");
+      return nullptr;
+    }
+    return &root[key];
+  }
+
   // Adds `key` to `target` unless it is there already (E0007).
   bool claim(json& target, const std::string& pointer, const std::string& key, const Token& at) {
     const std::string p = pointer_append(pointer, key);
@@ -407,25 +431,19 @@ class Parser {
   // part NAME [: ROLE] { ... }
   void parse_part(json& root, const std::string& pointer) {
     const Token& kw = take();
-    if (!root.contains("parts")) {
-      root["parts"] = json::array();
-      set_key_pos(pointer_append(pointer, "parts"), kw);
-      set_pos(pointer_append(pointer, "parts"), kw);
-    } else if (!root["parts"].is_array()) {
-      error_at("E0007", kw.line, kw.col, "/parts", "duplicate key 'parts'", "keep one of them");
+    json* list = list_for(root, pointer, "parts", kw);
+    if (!list) {
       sync();
       return;
     }
-    json& parts = root["parts"];
+    json& parts = *list;
     const std::string p = pointer_append(pointer_append(pointer, "parts"), std::to_string(parts.size()));
     json part = json::object();
     note_statement(p, kw);
     set_pos(p, kw);
     if (at(Tok::Ident)) {
       const Token& name = take();
-      part["name"] = name.text;
-      set_pos(p + "/name", name);
-      set_key_pos(p + "/name", name);
+      header_field(part, p, "name", name);
       if (at(Tok::Colon)) {
         take();
         if (!at(Tok::Ident)) {
@@ -435,9 +453,7 @@ class Parser {
           return;
         }
         const Token& role = take();
-        part["role"] = role.text;
-        set_pos(p + "/role", role);
-        set_key_pos(p + "/role", role);
+        header_field(part, p, "role", role);
       }
     }
     if (!at(Tok::LBrace)) {
@@ -456,17 +472,12 @@ class Parser {
   // function NAME [: RECEPTOR -> EFFECTOR] { ... }
   void parse_function(json& root, const std::string& pointer) {
     const Token& kw = take();
-    if (!root.contains("functions")) {
-      root["functions"] = json::array();
-      set_key_pos(pointer_append(pointer, "functions"), kw);
-      set_pos(pointer_append(pointer, "functions"), kw);
-    } else if (!root["functions"].is_array()) {
-      error_at("E0007", kw.line, kw.col, "/functions", "duplicate key 'functions'",
-               "keep one of them");
+    json* list = list_for(root, pointer, "functions", kw);
+    if (!list) {
       sync();
       return;
     }
-    json& functions = root["functions"];
+    json& functions = *list;
     const std::string p =
         pointer_append(pointer_append(pointer, "functions"), std::to_string(functions.size()));
     json fn = json::object();
@@ -474,9 +485,7 @@ class Parser {
     set_pos(p, kw);
     if (at(Tok::Ident)) {
       const Token& name = take();
-      fn["name"] = name.text;
-      set_pos(p + "/name", name);
-      set_key_pos(p + "/name", name);
+      header_field(fn, p, "name", name);
       if (at(Tok::Colon)) {
         take();
         if (!at(Tok::Ident) || peek().kind != Tok::Arrow || peek(2).kind != Tok::Ident) {
@@ -488,12 +497,8 @@ class Parser {
         const Token& r = take();
         take();  // ->
         const Token& e = take();
-        fn["receptor"] = r.text;
-        set_pos(p + "/receptor", r);
-        set_key_pos(p + "/receptor", r);
-        fn["effector"] = e.text;
-        set_pos(p + "/effector", e);
-        set_key_pos(p + "/effector", e);
+        header_field(fn, p, "receptor", r);
+        header_field(fn, p, "effector", e);
       }
     }
     if (!at(Tok::LBrace)) {
@@ -522,9 +527,7 @@ class Parser {
     const bool joint = key == "joint";
     if (at(Tok::Ident) && !cur().first_on_line && !(joint && cur().text == "on")) {
       const Token& type = take();
-      node["type"] = type.text;
-      set_pos(p + "/type", type);
-      set_key_pos(p + "/type", type);
+      header_field(node, p, "type", type);
     }
     if (joint && at_word("on") && !cur().first_on_line) {
       take();
@@ -534,9 +537,7 @@ class Parser {
         return;
       }
       const Token& parent = take();
-      node["parent"] = parent.text;
-      set_pos(p + "/parent", parent);
-      set_key_pos(p + "/parent", parent);
+      header_field(node, p, "parent", parent);
     }
     if (at(Tok::LBrace)) parse_block(Ctx::Generic, node, p);
     target[key] = std::move(node);
