@@ -1,6 +1,8 @@
 // The efc command line as a user meets it: exit codes, located diagnostics,
 // all-or-nothing output, and no crash on any malformed file.
 #include <gtest/gtest.h>
+
+#include "tests/efc_cli.h"
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -15,14 +17,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kEfc = std::string(EFC_BINARY_DIR) + "/efc";
 const fs::path kSource = EFC_SOURCE_DIR;
 
-struct Result {
-  int exit_code = -1;
-  bool signaled = false;
-  std::string err, out;
-};
+using Result = efc_test::CliResult;
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -38,19 +35,7 @@ fs::path scratch(const std::string& name) {
   return p;
 }
 
-// Runs efc with `args` (already shell-quoted), capturing stdout and stderr.
-Result efc(const std::string& args) {
-  const fs::path out = scratch("stdout.txt"), err = scratch("stderr.txt");
-  const std::string cmd = kEfc + " " + args + " >" + out.string() + " 2>" + err.string() + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  // std::system runs a shell: a signal in efc shows as exit 128+N from the shell.
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.signaled = WIFSIGNALED(status) || r.exit_code > 128;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+Result efc(const std::string& args) { return efc_test::run_efc(args); }
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
@@ -186,7 +171,9 @@ TEST(Cli, DumpIrShowsFilledDefaults) {
   ASSERT_FALSE(ir["functions"].empty());
   size_t defaulted = 0;
   for (const auto& f : ir["functions"]) {
-    if (f["mapping"]["type"] != "linear") EXPECT_TRUE(f["mapping"].contains("threshold"));
+    if (f["mapping"]["type"] != "linear") {
+      EXPECT_TRUE(f["mapping"].contains("threshold"));
+    }
     defaulted += f["mapping"]["defaulted"].size() + f["effect"]["defaulted"].size();
   }
   EXPECT_GT(defaulted, 0u) << "the lamp leaves some parameters to the spec's rules";

@@ -3,6 +3,8 @@
 // compiler. (Round trips over random specs: dsl_roundtrip_test.cc.)
 #include <gtest/gtest.h>
 
+#include "tests/efc_cli.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -22,7 +24,6 @@ using nlohmann::json;
 namespace {
 
 const fs::path kSource = EFC_SOURCE_DIR;
-const fs::path kEfc = fs::path(EFC_BINARY_DIR) / "efc";
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -31,23 +32,10 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
-struct CliRun {
-  int exit_code = -1;
-  std::string err;
-};
+using CliRun = efc_test::CliResult;
 
 // Runs efc from the source folder (so paths in messages are relative).
-CliRun run_efc(const std::string& args) {
-  const fs::path err = fs::temp_directory_path() / ("efc_dsl_test_" + std::to_string(::getpid()) + ".err");
-  const std::string cmd = "cd " + kSource.string() + " && " + kEfc.string() + " " + args +
-                          " >/dev/null 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.err = slurp(err);
-  fs::remove(err);
-  return r;
-}
+CliRun run_efc(const std::string& args) { return efc_test::run_efc(args, kSource.string()); }
 
 std::optional<json> parse_text(const std::string& text, efc::Diagnostics* diags_out = nullptr) {
   efc::Diagnostics diags;

@@ -10,6 +10,8 @@
 // A failing round trip is shrunk to a minimal document the JSON reader still
 // accepts, printed with its DSL text and a JSON diff.
 #include <gtest/gtest.h>
+
+#include "tests/efc_cli.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -41,7 +43,6 @@ uint64_t seed_count() {
 }
 constexpr int kReportedFailures = 3;  // shrunk and printed in full; the rest are counted
 const fs::path kSource = EFC_SOURCE_DIR;
-const std::string kEfc = std::string(EFC_BINARY_DIR) + "/efc";
 const std::string kBaseDir = (kSource / "examples").string();
 
 std::string slurp(const fs::path& p) {
@@ -465,11 +466,7 @@ void check_all(const char* what, const std::function<std::string(const json&)>& 
 }
 
 // ------------------------------------------------------------ the CLI
-struct Result {
-  int exit_code = -1;
-  bool signaled = false;
-  std::string err, out;
-};
+using Result = efc_test::CliResult;
 
 fs::path scratch(const std::string& name) {
   fs::path p = fs::temp_directory_path() / ("efc-dsl-rt-" + std::to_string(getpid())) / name;
@@ -478,17 +475,7 @@ fs::path scratch(const std::string& name) {
   return p;
 }
 
-Result run_efc(const std::string& args) {
-  const fs::path out = scratch("stdout.txt"), err = scratch("stderr.txt");
-  const std::string cmd = kEfc + " " + args + " >" + out.string() + " 2>" + err.string() + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.signaled = WIFSIGNALED(status) || r.exit_code > 128;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
+Result run_efc(const std::string& args) { return efc_test::run_efc(args); }
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 

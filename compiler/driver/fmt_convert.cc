@@ -11,54 +11,18 @@
 #include "compiler/driver/commands.h"
 #include "compiler/frontend/dsl.h"
 #include "compiler/frontend/json_reader.h"
-#include "compiler/frontend/positioned_json.h"
-#include "compiler/frontend/spec_builder.h"
 
 namespace efc {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Document {
-  nlohmann::json value;
-  dsl::CommentMap comments;
-};
-
-// Reads `path` (either format) and runs the shape checks. Errors go to diags;
-// *io_error is set when the file cannot be read.
-std::optional<Document> read_document(const std::string& path, const CommonOptions& common,
-                                      Diagnostics& diags, bool* io_error) {
-  *io_error = false;
-  auto text = read_text_file(path, diags);
-  if (!text) {
-    *io_error = true;
-    return std::nullopt;
-  }
+// Reads `path` (either format) with the shape checks; errors go to diags.
+std::optional<SpecDocument> read_document(const std::string& path, const CommonOptions& common,
+                                          Diagnostics& diags, bool* io_error) {
   ReadOptions opts;
   opts.allow_absolute_paths = common.allow_absolute_paths;
-  Diagnostics local;
-  Document doc;
-  std::optional<frontend::PositionedJson> parsed =
-      is_dsl_path(path)
-          ? dsl::parse_with_comments(*text, path, opts.max_depth, local, &doc.comments)
-          : frontend::parse_positioned(*text, path, opts.max_depth, local);
-  if (parsed) {
-    Object obj;
-    obj.file = path;
-    std::string base = fs::path(path).parent_path().string();
-    obj.base_dir = base.empty() ? "." : base;
-    obj.positions = parsed->positions;
-    frontend::build_object(parsed->value, obj, opts, local);
-    doc.value = std::move(parsed->value);
-  }
-  if (is_dsl_path(path)) local.attach_source_lines(path, *text);
-  std::vector<Diagnostic> items = local.items();
-  std::stable_sort(items.begin(), items.end(), [](const Diagnostic& a, const Diagnostic& b) {
-    return std::make_pair(a.line, a.col) < std::make_pair(b.line, b.col);
-  });
-  for (auto& d : items) diags.add(std::move(d));
-  if (!parsed || local.has_errors()) return std::nullopt;
-  return doc;
+  return read_spec_document(path, opts, diags, io_error);
 }
 
 bool is_json_path(const std::string& path) {
@@ -95,7 +59,7 @@ bool write_atomically(const std::string& path, const std::string& text, std::str
   return true;
 }
 
-std::string render(const Document& doc, bool dsl) {
+std::string render(const SpecDocument& doc, bool dsl) {
   return dsl ? dsl::print(doc.value, &doc.comments) : dsl::print_json(doc.value);
 }
 
@@ -118,9 +82,7 @@ int cmd_fmt(const std::vector<std::string>& files, bool check_only, const Common
       continue;
     }
     const std::string formatted = render(*doc, is_dsl_path(file));
-    Diagnostics dummy;
-    const std::string current = read_text_file(file, dummy).value_or("");
-    if (formatted == current) continue;
+    if (formatted == doc->text) continue;
     if (check_only) {
       std::cerr << file << ": would be reformatted\n";
       rc = std::max(rc, 1);

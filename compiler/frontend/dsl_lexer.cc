@@ -1,12 +1,12 @@
 #include "compiler/frontend/dsl_lexer.h"
 
+#include "compiler/frontend/dsl_syntax.h"
+
 #include <cstdint>
 
 namespace efc::dsl {
 namespace {
 
-bool is_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
 class Lexer {
  public:

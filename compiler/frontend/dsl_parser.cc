@@ -8,11 +8,11 @@
 // is declared later (a mapping threshold is in its receptor joint's unit).
 #include <cmath>
 #include <cstdlib>
-#include <set>
 
 #include "compiler/frontend/dsl.h"
 #include "compiler/frontend/dsl_comments.h"
 #include "compiler/frontend/dsl_lexer.h"
+#include "compiler/frontend/dsl_syntax.h"
 #include "compiler/frontend/dsl_units.h"
 
 namespace efc::dsl {
@@ -21,25 +21,6 @@ namespace {
 using nlohmann::json;
 using frontend::key_position;
 using frontend::pointer_append;
-
-enum class Ctx { Object, Part, Function, Wrapper, Compound, Generic };
-
-bool is_keyword(Ctx ctx, const std::string& w) {
-  static const std::set<std::string> object{"part", "function"};
-  static const std::set<std::string> part{"joint", "geometry", "box", "cylinder",
-                                          "sphere", "mesh", "compound"};
-  static const std::set<std::string> function{"mapping", "effect"};
-  static const std::set<std::string> wrapper{"box", "cylinder", "sphere", "mesh", "compound"};
-  switch (ctx) {
-    case Ctx::Object: return object.count(w) > 0;
-    case Ctx::Part: return part.count(w) > 0;
-    case Ctx::Function: return function.count(w) > 0;
-    case Ctx::Wrapper: return wrapper.count(w) > 0;
-    case Ctx::Compound: return wrapper.count(w) > 0 || w == "geometry";
-    case Ctx::Generic: return false;
-  }
-  return false;
-}
 
 // A number in the document: integral values become JSON integers, so JSON
 // written from a .efc file says 20, not 20.0 (nlohmann compares 20 == 20.0).
@@ -50,23 +31,28 @@ json number_json(double v) {
   return json(v);
 }
 
-// A number token as JSON: an integer literal that fits 64 bits stays an exact
-// integer (a double cannot hold 2^53 + 1); anything else is number_json(v).
-json literal_json(const Token& t, double v) {
-  if (t.text.find_first_of(".eE") == std::string::npos) {
-    errno = 0;
-    char* end = nullptr;
-    if (t.text[0] == '-') {
-      long long i = std::strtoll(t.text.c_str(), &end, 10);
-      if (errno == 0 && *end == '\0' && i != 0) return json(static_cast<std::int64_t>(i));
-    } else {
-      unsigned long long u = std::strtoull(t.text.c_str(), &end, 10);
-      if (errno == 0 && *end == '\0') {
-        if (u <= 9223372036854775807ULL) return json(static_cast<std::int64_t>(u));
-        return json(static_cast<std::uint64_t>(u));
-      }
-    }
+// An integer literal (no '.', no exponent) that fits 64 bits, as an exact JSON
+// integer: a double cannot hold 2^53 + 1. nullopt for anything else.
+std::optional<json> integer_literal(const Token& t) {
+  if (t.text.find_first_of(".eE") != std::string::npos) return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  if (t.text[0] == '-') {
+    long long i = std::strtoll(t.text.c_str(), &end, 10);
+    // "-0" is left to the double path, which keeps its sign.
+    if (errno == 0 && *end == '\0' && i != 0) return json(static_cast<std::int64_t>(i));
+    return std::nullopt;
   }
+  unsigned long long u = std::strtoull(t.text.c_str(), &end, 10);
+  if (errno != 0 || *end != '\0') return std::nullopt;
+  if (u <= 9223372036854775807ULL) return json(static_cast<std::int64_t>(u));
+  return json(static_cast<std::uint64_t>(u));
+}
+
+// A number token of a statement as JSON: exact integers stay exact, anything
+// else is number_json(v).
+json literal_json(const Token& t, double v) {
+  if (auto i = integer_literal(t)) return *i;
   return number_json(v);
 }
 
@@ -802,23 +788,9 @@ class Parser {
         take();
         out_.positions[p] = {t.line, t.col};
         // Integers stay integers (as the JSON reader keeps them).
-        if (t.text.find_first_of(".eE") == std::string::npos) {
-          errno = 0;
-          char* end = nullptr;
-          if (t.text[0] == '-') {
-            long long v = std::strtoll(t.text.c_str(), &end, 10);
-            if (errno == 0) {
-              out = static_cast<std::int64_t>(v);
-              return true;
-            }
-          } else {
-            unsigned long long v = std::strtoull(t.text.c_str(), &end, 10);
-            if (errno == 0) {
-              out = static_cast<std::uint64_t>(v);
-              if (v <= 9223372036854775807ULL) out = static_cast<std::int64_t>(v);
-              return true;
-            }
-          }
+        if (auto i = integer_literal(t)) {
+          out = std::move(*i);
+          return true;
         }
         double v = 0;
         if (!read_number(t, &v)) return false;

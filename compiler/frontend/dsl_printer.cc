@@ -13,6 +13,7 @@
 #include <set>
 
 #include "compiler/frontend/dsl.h"
+#include "compiler/frontend/dsl_syntax.h"
 #include "compiler/frontend/dsl_units.h"
 #include "compiler/frontend/positioned_json.h"
 
@@ -21,25 +22,6 @@ namespace {
 
 using nlohmann::json;
 
-enum class Ctx { Object, Part, Function, Wrapper, Compound, Generic };
-
-bool is_keyword(Ctx ctx, const std::string& w) {
-  static const std::set<std::string> part{"joint", "geometry", "box", "cylinder",
-                                          "sphere", "mesh", "compound"};
-  static const std::set<std::string> wrapper{"box", "cylinder", "sphere", "mesh", "compound"};
-  switch (ctx) {
-    case Ctx::Object: return w == "part" || w == "function";
-    case Ctx::Part: return part.count(w) > 0;
-    case Ctx::Function: return w == "mapping" || w == "effect";
-    case Ctx::Wrapper: return wrapper.count(w) > 0;
-    case Ctx::Compound: return wrapper.count(w) > 0 || w == "geometry";
-    case Ctx::Generic: return false;
-  }
-  return false;
-}
-
-bool is_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
 // Spelled as a bare identifier, the lexer gives back the same word.
 bool ident_ok(const std::string& s) {

@@ -26,17 +26,18 @@ bool is_valid_name(std::string_view name) {
 namespace {
 
 // A parsed document -> the IR with shape checks; diagnostics in file order.
-std::optional<Object> build_from(std::optional<frontend::PositionedJson> parsed,
+// `value` is null when the text could not be parsed (its errors are in local).
+std::optional<Object> build_from(const nlohmann::json* value, frontend::Positions positions,
                                  Diagnostics& local, const std::string& file,
                                  const std::string& base_dir, const ReadOptions& opts,
                                  Diagnostics& diags) {
   std::optional<Object> result;
-  if (parsed) {
+  if (value) {
     Object obj;
     obj.file = file;
     obj.base_dir = base_dir;
-    obj.positions = std::move(parsed->positions);
-    frontend::build_object(parsed->value, obj, opts, local);
+    obj.positions = std::move(positions);
+    frontend::build_object(*value, obj, opts, local);
     result = std::move(obj);
   }
   // Put in file order (the DOM's objects iterate keys alphabetically, not as written).
@@ -51,6 +52,19 @@ std::optional<Object> build_from(std::optional<frontend::PositionedJson> parsed,
   return result;
 }
 
+// Text of either format (by the file's extension) -> the positioned document.
+std::optional<frontend::PositionedJson> parse_any(std::string_view text, const std::string& file,
+                                                  const ReadOptions& opts, Diagnostics& local,
+                                                  dsl::CommentMap* comments) {
+  if (is_dsl_path(file)) return dsl::parse_with_comments(text, file, opts.max_depth, local, comments);
+  return frontend::parse_positioned(text, file, opts.max_depth, local);
+}
+
+std::string folder_of(const std::string& path) {
+  std::string base = std::filesystem::path(path).parent_path().string();
+  return base.empty() ? "." : base;
+}
+
 }  // namespace
 
 std::optional<Object> read_json_text(std::string_view text, const std::string& file,
@@ -58,7 +72,9 @@ std::optional<Object> read_json_text(std::string_view text, const std::string& f
                                      Diagnostics& diags) {
   Diagnostics local;
   auto parsed = frontend::parse_positioned(text, file, opts.max_depth, local);
-  return build_from(std::move(parsed), local, file, base_dir, opts, diags);
+  if (!parsed) return build_from(nullptr, {}, local, file, base_dir, opts, diags);
+  return build_from(&parsed->value, std::move(parsed->positions), local, file, base_dir, opts,
+                    diags);
 }
 
 bool is_dsl_path(const std::string& path) {
@@ -69,13 +85,37 @@ std::optional<Object> read_spec_text(std::string_view text, const std::string& f
                                      const std::string& base_dir, const ReadOptions& opts,
                                      Diagnostics& diags) {
   if (!is_dsl_path(file)) return read_json_text(text, file, base_dir, opts, diags);
-  Diagnostics local;
-  auto parsed = dsl::parse(text, file, opts.max_depth, local);
-  Diagnostics built;
-  auto obj = build_from(std::move(parsed), local, file, base_dir, opts, built);
+  Diagnostics local, built;
+  auto parsed = parse_any(text, file, opts, local, nullptr);
+  auto obj = parsed ? build_from(&parsed->value, std::move(parsed->positions), local, file,
+                                 base_dir, opts, built)
+                    : build_from(nullptr, {}, local, file, base_dir, opts, built);
   built.attach_source_lines(file, text);
   for (const auto& d : built.items()) diags.add(d);
   return obj;
+}
+
+std::optional<SpecDocument> read_spec_document(const std::string& path, const ReadOptions& opts,
+                                               Diagnostics& diags, bool* io_error) {
+  if (io_error) *io_error = false;
+  auto text = read_text_file(path, diags);
+  if (!text) {
+    if (io_error) *io_error = true;
+    return std::nullopt;
+  }
+  SpecDocument doc;
+  Diagnostics local, built;
+  auto parsed = parse_any(*text, path, opts, local, &doc.comments);
+  // The shape checks need the positions; the document keeps its value.
+  auto obj = parsed ? build_from(&parsed->value, parsed->positions, local, path, folder_of(path),
+                                 opts, built)
+                    : build_from(nullptr, {}, local, path, folder_of(path), opts, built);
+  if (is_dsl_path(path)) built.attach_source_lines(path, *text);
+  for (const auto& d : built.items()) diags.add(d);
+  if (!obj) return std::nullopt;
+  doc.value = std::move(parsed->value);
+  doc.text = std::move(*text);
+  return doc;
 }
 
 std::optional<std::string> read_text_file(const std::string& path, Diagnostics& diags) {
@@ -105,9 +145,7 @@ std::optional<Object> read_spec_file(const std::string& path, const ReadOptions&
     if (io_error) *io_error = true;
     return std::nullopt;
   }
-  std::string base = fs::path(path).parent_path().string();
-  if (base.empty()) base = ".";
-  auto obj = read_spec_text(*text, path, base, opts, diags);
+  auto obj = read_spec_text(*text, path, folder_of(path), opts, diags);
   if (text_out) *text_out = std::move(*text);
   return obj;
 }

@@ -12,7 +12,10 @@
 #include <string>
 #include <string_view>
 
+#include <nlohmann/json.hpp>
+
 #include "compiler/diagnostics.h"
+#include "compiler/frontend/dsl_comments.h"
 #include "compiler/ir.h"
 
 namespace efc {
@@ -51,6 +54,16 @@ std::optional<Object> read_spec_text(std::string_view text, const std::string& f
 std::optional<Object> read_spec_file(const std::string& path, const ReadOptions& opts,
                                      Diagnostics& diags, bool* io_error,
                                      std::string* text = nullptr);
+
+// A spec file's document itself (after the shape checks, before the cross-
+// field rules), for tools that rewrite it (efc fmt, efc convert).
+struct SpecDocument {
+  nlohmann::json value;
+  dsl::CommentMap comments;  // .efc files only
+  std::string text;          // the file as read
+};
+std::optional<SpecDocument> read_spec_document(const std::string& path, const ReadOptions& opts,
+                                               Diagnostics& diags, bool* io_error);
 
 // The whole file as text, or nullopt with error E0001 (exit code 2).
 std::optional<std::string> read_text_file(const std::string& path, Diagnostics& diags);
