@@ -3,10 +3,11 @@
 //
 // Each spec is compiled as `efc play` compiles it (write_mujoco_model with
 // drive_receptors, mj_loadXML), once per process. One benchmark iteration runs
-// two episodes of the same length from the same reset state (keyframe
-// `initial`), back to back, so they see the same machine load (a third
-// episode, the templates one again with a clock around the template part,
-// gives template_ns and template_pct):
+// episodes of the same length from the same reset state (keyframe `initial`)
+// back to back, raw, templates, templates, raw (ABBA), so both kinds see the
+// same machine load and neither always runs first (a fifth episode, the
+// templates one again with a clock around the template part, gives
+// template_ns and template_pct):
 //   raw        mj_step only, on the same trajectory: before timing, one
 //              templates episode records d->ctrl (and the air forces on free
 //              bodies) each step; the raw episode copies that row in and calls
@@ -19,7 +20,8 @@
 // Counters (medians over the iterations of a repetition; the report gives the
 // median of 5 repetitions):
 //   raw_steps_per_s, tmpl_steps_per_s   steps per second of each episode
-//   overhead_pct     t_templates / t_raw - 1 of the same iteration, end to end
+//   overhead_pct     t_templates / t_raw - 1 of the same iteration (each the
+//                    mean of its two episodes), end to end
 //   template_pct     time inside ctrl + Controller::step, timed in the loop
 //                    less the cost of a clock read (clock_ns, calibrated),
 //                    over the raw episode's time: the cost of template
@@ -231,36 +233,45 @@ void BM_play(benchmark::State& state, const efc_bench::BenchSpec& spec) {
     clock_ns = std::chrono::duration<double, std::nano>(acc).count() / n;
   }
 
-  // Per iteration: a raw episode, a templates episode, a timed templates episode.
+  // One raw episode: mj_step on the recorded controls.
+  auto raw_episode = [&]() {
+    sim.reset(false);
+    const int nu = m->nu;
+    const size_t nfree = sim.free_bodies.size();
+    const auto t0 = Clock::now();
+    for (int k = 0; k < steps; ++k) {
+      if (nu) mju_copy(d->ctrl, &sim.ctrl_log[static_cast<size_t>(k) * nu], nu);
+      for (size_t b = 0; b < nfree; ++b)
+        mju_copy(d->xfrc_applied + 6 * sim.free_bodies[b],
+                 &sim.xfrc_log[(static_cast<size_t>(k) * nfree + b) * 6], 6);
+      mj_step(m, d);
+    }
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  };
+  // One templates episode: the harness loop as it runs, no clock inside.
+  auto templates_episode = [&]() {
+    sim.reset(true);
+    const auto t0 = Clock::now();
+    for (int k = 0; k < steps; ++k) {
+      sim.set_drives(k * dt);  // what the harness does each step, minus logging
+      controller.step(m, d);
+      mj_step(m, d);
+    }
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  };
+
+  // Per iteration: raw, templates, templates, raw (ABBA, so a drift in machine
+  // speed during the iteration and the order of episodes cancel out), then a
+  // templates episode with the template part timed.
   std::vector<double> raw_s, tmpl_s, inner_s, overhead, share;
   try {
     for (auto _ : state) {
-      sim.reset(false);
-      const int nu = m->nu;
-      const size_t nfree = sim.free_bodies.size();
-      auto t0 = Clock::now();
-      for (int k = 0; k < steps; ++k) {
-        if (nu) mju_copy(d->ctrl, &sim.ctrl_log[static_cast<size_t>(k) * nu], nu);
-        for (size_t b = 0; b < nfree; ++b)
-          mju_copy(d->xfrc_applied + 6 * sim.free_bodies[b],
-                   &sim.xfrc_log[(static_cast<size_t>(k) * nfree + b) * 6], 6);
-        mj_step(m, d);
-      }
-      auto t1 = Clock::now();
-      const double raw = std::chrono::duration<double>(t1 - t0).count();
+      const double raw_a = raw_episode();
+      const double tmpl_a = templates_episode();
+      const double tmpl_b = templates_episode();
+      const double raw_b = raw_episode();
+      const double raw = 0.5 * (raw_a + raw_b), tmpl = 0.5 * (tmpl_a + tmpl_b);
 
-      // The harness loop as it runs, no clock inside.
-      sim.reset(true);
-      t0 = Clock::now();
-      for (int k = 0; k < steps; ++k) {
-        sim.set_drives(k * dt);  // what the harness does each step, minus logging
-        controller.step(m, d);
-        mj_step(m, d);
-      }
-      t1 = Clock::now();
-      const double tmpl = std::chrono::duration<double>(t1 - t0).count();
-
-      // The same loop with the template part timed.
       sim.reset(true);
       Clock::duration inner_d{};
       for (int k = 0; k < steps; ++k) {

@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -176,6 +177,10 @@ struct Function {
   Extensions extensions;
 };
 
+// Line and column (1-based) of a spec value, keyed by its JSON pointer; a
+// key's position is under "key:" + pointer (frontend/positioned_json.h).
+using SourcePositions = std::unordered_map<std::string, std::pair<int, int>>;
+
 // ---------------------------------------------------------------- object
 struct Object {
   std::string file;       // the spec file as the user named it
@@ -188,7 +193,9 @@ struct Object {
   std::vector<Function> functions;
   Extensions extensions;
   // Every value's position, keyed by JSON pointer (for field-level diagnostics).
-  std::map<std::string, std::pair<int, int>> positions;
+  // Only ever looked up, never walked in order: a hash map, so building it for
+  // every value of the document stays cheap.
+  SourcePositions positions;
 
   int find_part(const std::string& n) const {
     for (size_t i = 0; i < parts.size(); ++i)

@@ -84,6 +84,8 @@ void effect_init(const EffectParams& p, EffectState* st) {
   st->output = p.e_lo;  // at rest: off (ambient temperature, no light, no flow)
   st->emit_remainder = 0;
   st->emitted = 0;
+  st->lag_dt = -1;  // no factor yet
+  st->lag_factor = 0;
 }
 
 double droplet_rate(const EffectParams& p, double flow_l_per_min) {
@@ -95,8 +97,12 @@ int effect_step(const EffectParams& p, double s_E, double dt, EffectState* st) {
   switch (p.kind) {
     case kTemperature: {
       // Exact discretisation of dT/dt = (s_E - T) / tau: stable for any dt.
-      const double tau = p.time_constant > 0 ? p.time_constant : 1e-9;
-      st->output += (s_E - st->output) * (1.0 - std::exp(-dt / tau));
+      if (dt != st->lag_dt) {
+        const double tau = p.time_constant > 0 ? p.time_constant : 1e-9;
+        st->lag_factor = 1.0 - std::exp(-dt / tau);
+        st->lag_dt = dt;
+      }
+      st->output += (s_E - st->output) * st->lag_factor;
       return 0;
     }
     case kFluid: {

@@ -71,6 +71,11 @@ struct EffectState {
   double output;
   double emit_remainder;  // fluid: fraction of a droplet carried to the next step
   long emitted;           // fluid: droplets emitted so far
+  // temperature: the lag's per-step factor 1 - exp(-dt / tau), kept for the
+  // dt it was computed for (exp costs more than the rest of a template, and
+  // dt rarely changes between steps).
+  double lag_dt;
+  double lag_factor;
 };
 
 void effect_init(const EffectParams& p, EffectState* st);

@@ -83,8 +83,9 @@ TEST(Examples, CheckCleanAndLoadInMujocoWithoutWarning) {
     ASSERT_NE(m, nullptr) << error;
     for (const Part& p : obj->parts) {
       EXPECT_GE(mj_name2id(m, mjOBJ_BODY, p.name.c_str()), 0) << p.name;
-      if (p.joint && p.joint->movable())
+      if (p.joint && p.joint->movable()) {
         EXPECT_GE(mj_name2id(m, mjOBJ_JOINT, p.name.c_str()), 0) << p.name;
+      }
     }
     mjData* d = mj_makeData(m);
     for (int i = 0; i < 200; ++i) mj_step(m, d);
@@ -135,8 +136,9 @@ TEST_P(ExamplePlayback, SEMatchesSpecAndEffectIsRealised) {
         // Steady state: once s_E has held for 1 s, the joint is within 2% of the range.
         size_t since = last;
         while (since > 0 && s_e[since - 1] == s_e[last]) --since;
-        if ((last - since) * opts.dt >= 1.0)
+        if ((last - since) * opts.dt >= 1.0) {
           EXPECT_NEAR(measured[last], s_e[last], 0.02 * span);
+        }
         break;
       }
       case EffectType::Illumination:

@@ -743,9 +743,10 @@ TEST(MujocoCallbacks, GeneratedProgramMatchesInProcessController) {
   efc::Diagnostics diags;
   ASSERT_TRUE(backend->emit(obj, dir, diags));
   for (const char* f : {"testobj.xml", "testobj_callbacks.cc", "testobj_callbacks.h", "README.md",
-                        "CMakeLists.txt", "efc_runtime/efc_runtime.h", "efc_runtime/efc_runtime.cc",
-                        "efc_runtime/efc_mujoco.h", "efc_runtime/efc_mujoco.cc"})
+                        "CMakeLists.txt", "efc_mujoco_runtime.h"})
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + f)) << f;
+  // Six files and nothing else: no folder for primitive geometry, one runtime file.
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 6);
   const int steps = 1500;
   const std::string main_cc = std::string(
       "#include <cmath>\n#include <cstdio>\n#include <cstdlib>\n#include \"testobj_callbacks.h\"\n"
@@ -769,7 +770,7 @@ TEST(MujocoCallbacks, GeneratedProgramMatchesInProcessController) {
       "  efc_testobj_uninstall();\n  mj_deleteData(d);\n  mj_deleteModel(m);\n  return 0;\n}\n";
   std::ofstream(dir + "/main.cc") << main_cc;
   const std::string cmd = "cd '" + dir + "' && g++ -std=c++17 -O2 -Wall -Werror -o prog main.cc testobj_callbacks.cc "
-                          "efc_runtime/efc_runtime.cc efc_runtime/efc_mujoco.cc -lmujoco > build.log 2>&1 "
+                          "-lmujoco > build.log 2>&1 "
                           "&& ./prog > run.txt 2> run.err";
   const int rc = std::system(cmd.c_str());
   ASSERT_EQ(rc, 0) << "see " << dir << "/build.log, run.err";
@@ -809,6 +810,43 @@ TEST(MujocoCallbacks, GeneratedProgramMatchesInProcessController) {
   EXPECT_FALSE(std::getline(a, la)) << "the generated program printed more lines";
   // The trajectory exercised every function.
   EXPECT_NE(expected.find("water 0.0"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+// The output folder builds with its own CMakeLists.txt, and efc_mujoco_runtime.h
+// works as a single-header library: a second translation unit that includes it
+// without EFC_RUNTIME_IMPLEMENTATION links against the library (the definitions
+// exist exactly once, in the generated callbacks).
+TEST(MujocoCallbacks, OutputFolderBuildsWithItsCMakeLists) {
+  const efc::Object obj = efc_test::make_test_object();
+  const std::string dir = efc_test::temp_dir("cmake_output");
+  efc::Diagnostics diags;
+  ASSERT_TRUE(efc::find_backend("mujoco")->emit(obj, dir, diags));
+  std::ofstream(dir + "/user.cc")
+      << "#include \"efc_mujoco_runtime.h\"\n"
+         "double user_map(double s_R) {\n"
+         "  efc_rt::MappingParams p{efc_rt::kLinear, 0, 1, 0, 100, 0, 0, 0, 100, 0, 0, 0};\n"
+         "  efc_rt::MappingState st{};\n  return efc_rt::mapping_update(p, s_R, &st);\n}\n";
+  std::ofstream(dir + "/main.cc")
+      << "#include <cstdio>\n#include \"testobj_callbacks.h\"\n"
+         "double user_map(double);\n"
+         "int main() {\n  char e[1000] = \"\";\n"
+         "  mjModel* m = mj_loadXML(\"testobj.xml\", 0, e, sizeof e);\n  if (!m) return 2;\n"
+         "  if (!efc_testobj_install(m)) return 3;\n"
+         "  std::printf(\"%d %g\\n\", efc_testobj_function_count(), user_map(0.25));\n"
+         "  efc_testobj_uninstall();\n  mj_deleteModel(m);\n  return 0;\n}\n";
+  const std::string cmd =
+      "cd '" + dir + "' && cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > cmake.log 2>&1 && "
+      "cmake --build build >> cmake.log 2>&1 && "
+      "g++ -std=c++17 -Wall -Werror main.cc user.cc -I. -Lbuild -ltestobj_callbacks -lmujoco -o user "
+      ">> cmake.log 2>&1 && LD_LIBRARY_PATH=build ./user > user.txt 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << "see " << dir << "/cmake.log, user.txt";
+  std::ifstream in(dir + "/user.txt");
+  std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(out, std::to_string(efc::build_bindings(obj).size()) + " 25\n");
 }
 
 }  // namespace

@@ -126,6 +126,18 @@ TEST(RuntimeEffect, TemperatureIsFirstOrderLag) {
   EXPECT_NEAR(st.output, 20 + 180 * (1 - std::exp(-1.0)), 1e-9);
 }
 
+// The lag factor is cached per dt: a step of another length must recompute it.
+TEST(RuntimeEffect, TemperatureLagFollowsAChangingTimeStep) {
+  EffectParams e{kTemperature, 20, 200, 10, 0};
+  EffectState st;
+  effect_init(e, &st);
+  for (int i = 0; i < 500; ++i) effect_step(e, 200, 0.01, &st);  // 5 s
+  for (int i = 0; i < 100; ++i) effect_step(e, 200, 0.05, &st);  // 5 s more
+  EXPECT_NEAR(st.output, 20 + 180 * (1 - std::exp(-1.0)), 1e-9);
+  for (int i = 0; i < 10; ++i) effect_step(e, 20, 1.0, &st);  // cooling for one tau
+  EXPECT_NEAR(st.output, 20 + 180 * (1 - std::exp(-1.0)) * std::exp(-1.0), 1e-9);
+}
+
 TEST(RuntimeEffect, FluidEmitsAtRateWithRemainder) {
   EffectParams e{kFluid, 0, 6, 0, 1e-3};  // 1 mL droplets
   EffectState st;

@@ -1,6 +1,6 @@
 // The runtime sources (efc_runtime.h/.cc, efc_mujoco.h/.cc) embedded in the
-// compiler at build time (embed_runtime.cmake), so a MuJoCo output folder is
-// self-contained: the generated callbacks compile against this exact copy.
+// compiler at build time (embed_runtime.cmake), so an output folder is
+// self-contained: the generated code compiles against this exact copy.
 #pragma once
 
 #include <string>
@@ -13,5 +13,9 @@ struct EmbeddedFile {
   const char* text;
 };
 const std::vector<EmbeddedFile>& embedded_runtime_files();
+// The same runtime with its MuJoCo binding as one single-header library,
+// "efc_mujoco_runtime.h" (amalgamate_runtime.cmake): what a MuJoCo output
+// folder carries.
+const std::vector<EmbeddedFile>& embedded_mujoco_runtime_files();
 
 }  // namespace efc

@@ -1,6 +1,7 @@
 // The MuJoCo target: Backend::emit writes a self-contained folder
-//   <name>.xml, meshes/, <name>_callbacks.cc/.h, efc_runtime/ (copied
-//   runtime), CMakeLists.txt, README.md.
+//   <name>.xml, meshes/ (only with meshes), <name>_callbacks.cc/.h,
+//   efc_mujoco_runtime.h (the runtime as one single-header library),
+//   CMakeLists.txt, README.md.
 // The MJCF itself is mjcf_writer.cc, the table bindings_table.cc, the
 // callbacks callbacks_emitter.cc.
 #include "backends/output_file.h"
@@ -28,7 +29,7 @@ std::string output_cmake(const Object& obj) {
     << "option(BUILD_SHARED_LIBS \"Build a shared library\" ON)\n"
     << "find_package(Qhull QUIET)  # Debian's mujoco config needs it\n"
     << "find_package(mujoco QUIET)\n"
-    << "add_library(" << lib << " " << lib << ".cc efc_runtime/efc_runtime.cc efc_runtime/efc_mujoco.cc)\n"
+    << "add_library(" << lib << " " << lib << ".cc)  # it includes efc_mujoco_runtime.h\n"
     << "target_include_directories(" << lib << " PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})\n"
     << "set_target_properties(" << lib << " PROPERTIES POSITION_INDEPENDENT_CODE ON)\n"
     << "if(TARGET mujoco::mujoco)\n"
@@ -53,14 +54,15 @@ std::string output_readme(const Object& obj, const mjcf::Plan& plan,
     << "- `meshes/`: mesh assets (binary STL, vertices relative to their body).\n"
     << "- `" << n << "_callbacks.cc`, `" << n << "_callbacks.h`: the function templates as an "
     << "`mjcb_control` callback, with a C API.\n"
-    << "- `efc_runtime/`: the efc runtime (template semantics) and its MuJoCo binding, copied so "
-    << "this folder builds on its own.\n"
+    << "- `efc_mujoco_runtime.h`: the efc runtime (template semantics) and its MuJoCo binding as "
+    << "one single-header library, copied so this folder builds on its own. `" << n
+    << "_callbacks.cc` compiles its definitions (`#define EFC_RUNTIME_IMPLEMENTATION`).\n"
     << "- `CMakeLists.txt`: builds `lib" << n << "_callbacks`.\n\n"
     << "Without the callbacks the model is a passive articulated object: lights stay off, "
     << "nothing flows. The callbacks realise every function each step.\n\n"
     << "## Build\n\n```sh\ncmake -S . -B build && cmake --build build\n```\n\nor in one line:\n\n"
-    << "```sh\ng++ -std=c++17 -O2 -shared -fPIC -I. " << n << "_callbacks.cc efc_runtime/efc_runtime.cc "
-    << "efc_runtime/efc_mujoco.cc -lmujoco -o lib" << n << "_callbacks.so\n```\n\n"
+    << "```sh\ng++ -std=c++17 -O2 -shared -fPIC " << n << "_callbacks.cc -lmujoco -o lib" << n
+    << "_callbacks.so\n```\n\n"
     << "## Use\n\n```c++\n#include \"" << n << "_callbacks.h\"\n\n"
     << "mjModel* m = mj_loadXML(\"" << n << ".xml\", nullptr, err, sizeof err);\n"
     << "mjData* d = mj_makeData(m);\n"
@@ -132,11 +134,7 @@ class MujocoBackend : public Backend {
       diags.error("E0900", path, 0, 0, "", "cannot write '" + path + "': " + error);
       return false;
     };
-    if (!mjcf::make_dirs(dir + "/efc_runtime", &error)) {
-      diags.error("E0900", dir, 0, 0, "", "cannot create '" + dir + "/efc_runtime': " + error);
-      return false;
-    }
-    for (const EmbeddedFile& f : embedded_runtime_files())
+    for (const EmbeddedFile& f : embedded_mujoco_runtime_files())
       if (!put(f.path, f.text)) return false;
     const mjcf::Plan plan = mjcf::make_plan(obj, options);
     return put(obj.name + "_callbacks.cc", emit_callbacks(obj)) &&

@@ -20,7 +20,7 @@ std::optional<Object> load_spec(const std::string& path, const LoadOptions& opts
   auto finish = [&](bool ok) -> std::optional<Object> {
     if (is_dsl_path(path)) diags.attach_source_lines(path, text);
     if (!ok) return std::nullopt;
-    return obj;
+    return std::move(obj);  // the Object, its positions included, is not copied
   };
   // Shape errors and structural errors are reported together: the checks run
   // on whatever the reader could build, so one run shows every problem.

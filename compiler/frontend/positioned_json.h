@@ -17,10 +17,11 @@
 #include <nlohmann/json.hpp>
 
 #include "compiler/diagnostics.h"
+#include "compiler/ir.h"
 
 namespace efc::frontend {
 
-using Positions = std::map<std::string, std::pair<int, int>>;
+using Positions = SourcePositions;
 
 struct PositionedJson {
   nlohmann::json value;
