@@ -6,19 +6,24 @@
 //   compile_mjcf/<spec>    load_spec + write_mujoco_model: only the MJCF and its
 //                          meshes (what MuJoCo loads), without the callbacks,
 //                          the copied runtime, CMakeLists.txt and README.md
+//   write_files/<spec>     writing the files compile_mujoco writes, their text
+//                          already in memory: the file system's share of it
 //   mujoco_load/<spec>     mj_loadXML of the emitted XML: what MuJoCo itself
 //                          takes to load the result (compile should be well under)
 // Each is repeated 5 times and reported as mean / median / stddev (ms).
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>
 
-#include <sys/resource.h>
-
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "backends/backend.h"
 #include "backends/mujoco/mujoco_backend.h"
+#include "backends/output_file.h"
 #include "bench/bench_common.h"
 #include "compiler/core/load.h"
 #include "harness/mujoco_errors.h"
@@ -29,20 +34,6 @@ namespace {
 
 constexpr int kRepetitions = 5;
 constexpr double kMinTime = 0.05;  // s per repetition (bench/run stays under ~3 min)
-
-// Kernel (system) CPU time of this process so far, in seconds. Creating the
-// output folder and files is kernel work: each compile benchmark reports it
-// as sys_ms (per iteration), so the table can show efc's own work apart from
-// what the file system costs.
-double system_seconds() {
-  rusage r{};
-  getrusage(RUSAGE_SELF, &r);
-  return static_cast<double>(r.ru_stime.tv_sec) + 1e-6 * static_cast<double>(r.ru_stime.tv_usec);
-}
-
-void set_sys(benchmark::State& state, double sys_total, long iterations) {
-  state.counters["sys_ms"] = iterations > 0 ? 1e3 * sys_total / static_cast<double>(iterations) : 0.0;
-}
 
 void set_counters(benchmark::State& state, const efc::Object& obj) {
   state.counters["parts"] = static_cast<double>(obj.parts.size());
@@ -70,11 +61,8 @@ void BM_compile(benchmark::State& state, const efc_bench::BenchSpec& spec, const
   if (!backend) return state.SkipWithError("target not registered");
   efc_bench::TempDir tmp("efc-bench-compile");
   const std::string out = (tmp.path() / target).string();
-  double sys = 0;
-  long n = 0;
   for (auto _ : state) {
     // What the driver does: an empty folder, load, emit.
-    const double sys0 = system_seconds();
     std::error_code ec;
     fs::create_directory(out, ec);
     efc::Diagnostics diags;
@@ -83,13 +71,10 @@ void BM_compile(benchmark::State& state, const efc_bench::BenchSpec& spec, const
       state.SkipWithError(("compile failed for " + spec.path).c_str());
       break;
     }
-    sys += system_seconds() - sys0;
-    ++n;
     state.PauseTiming();
     fs::remove_all(out, ec);
     state.ResumeTiming();
   }
-  set_sys(state, sys, n);
   set_counters(state, *obj);
 }
 
@@ -99,10 +84,7 @@ void BM_compile_mjcf(benchmark::State& state, const efc_bench::BenchSpec& spec) 
   if (!obj) return state.SkipWithError(error.c_str());
   efc_bench::TempDir tmp("efc-bench-mjcf");
   const std::string out = (tmp.path() / "mujoco").string();
-  double sys = 0;
-  long n = 0;
   for (auto _ : state) {
-    const double sys0 = system_seconds();
     std::error_code ec;
     fs::create_directory(out, ec);
     efc::Diagnostics diags;
@@ -112,13 +94,59 @@ void BM_compile_mjcf(benchmark::State& state, const efc_bench::BenchSpec& spec) 
       state.SkipWithError(("write_mujoco_model failed for " + spec.path).c_str());
       break;
     }
-    sys += system_seconds() - sys0;
-    ++n;
     state.PauseTiming();
     fs::remove_all(out, ec);
     state.ResumeTiming();
   }
-  set_sys(state, sys, n);
+  set_counters(state, *obj);
+}
+
+// Writing the same files `efc compile --target mujoco` writes for this spec
+// (their text already in memory; the same write_text_file), into an empty
+// folder: what the file system charges for the output alone, which any tool
+// producing these files would pay. compile_mujoco minus this is efc's own work.
+void BM_write_files(benchmark::State& state, const efc_bench::BenchSpec& spec) {
+  std::string error;
+  const auto obj = efc_bench::load(spec.path, &error);
+  if (!obj) return state.SkipWithError(error.c_str());
+  efc_bench::TempDir tmp("efc-bench-files");
+  const fs::path emitted = tmp.path() / "emitted";
+  fs::create_directory(emitted);
+  efc::Diagnostics diags;
+  if (!efc::find_backend("mujoco")->emit(*obj, emitted.string(), diags))
+    return state.SkipWithError(("compile failed for " + spec.path).c_str());
+  // The output as (folder?, relative path, text), folders before their files.
+  struct Entry {
+    bool folder;
+    std::string rel, text;
+  };
+  std::vector<Entry> entries;
+  for (const auto& e : fs::recursive_directory_iterator(emitted)) {
+    const std::string rel = fs::relative(e.path(), emitted).string();
+    if (e.is_directory()) {
+      entries.push_back({true, rel, {}});
+    } else {
+      std::ifstream in(e.path(), std::ios::binary);
+      entries.push_back({false, rel, std::string(std::istreambuf_iterator<char>(in), {})});
+    }
+  }
+  std::stable_partition(entries.begin(), entries.end(), [](const Entry& e) { return e.folder; });
+  const std::string out = (tmp.path() / "mujoco").string();
+  for (auto _ : state) {
+    std::error_code ec;
+    fs::create_directory(out, ec);
+    for (const Entry& e : entries) {
+      const std::string path = out + "/" + e.rel;
+      if (e.folder ? !fs::create_directory(path, ec) : !efc::write_text_file(path, e.text, &error)) {
+        state.SkipWithError(("cannot write " + path).c_str());
+        break;
+      }
+    }
+    state.PauseTiming();
+    fs::remove_all(out, ec);
+    state.ResumeTiming();
+  }
+  state.counters["files"] = static_cast<double>(entries.size());
   set_counters(state, *obj);
 }
 
@@ -134,18 +162,13 @@ void BM_mujoco_load(benchmark::State& state, const efc_bench::BenchSpec& spec) {
     return state.SkipWithError(("compile failed for " + spec.path).c_str());
   const std::string xml = out + "/" + obj->name + ".xml";
   char load_error[1024] = "";
-  double sys = 0;
-  long n = 0;
   try {
     for (auto _ : state) {
-      const double sys0 = system_seconds();
       mjModel* m = mj_loadXML(xml.c_str(), nullptr, load_error, sizeof load_error);
       if (!m) {
         state.SkipWithError((std::string("mj_loadXML: ") + load_error).c_str());
         break;
       }
-      sys += system_seconds() - sys0;
-      ++n;
       state.PauseTiming();
       mj_deleteModel(m);
       state.ResumeTiming();
@@ -154,7 +177,6 @@ void BM_mujoco_load(benchmark::State& state, const efc_bench::BenchSpec& spec) {
     state.SkipWithError((std::string("MuJoCo error: ") + e.what()).c_str());
   }
   efc::take_mujoco_warnings();
-  set_sys(state, sys, n);
   set_counters(state, *obj);
 }
 
@@ -179,6 +201,7 @@ int main(int argc, char** argv) {
       add(std::string("compile_") + target, spec,
           [target](benchmark::State& st, const efc_bench::BenchSpec& sp) { BM_compile(st, sp, target); });
     add("compile_mjcf", spec, BM_compile_mjcf);
+    add("write_files", spec, BM_write_files);
     add("mujoco_load", spec, BM_mujoco_load);
   }
   benchmark::RunSpecifiedBenchmarks();
