@@ -14,15 +14,19 @@
 //              mj_step, so MuJoCo does the same work in both (the copy costs a
 //              few ns). Fluid droplets are moved by the binding itself, so for
 //              play_fluid/ the two trajectories differ.
-//   templates  exactly the harness loop minus logging: set every drive's ctrl
-//              from the profile (press:2 over the episode), Controller::step
-//              (the templates), mj_step
+//   templates  the same recorded inputs (the receptor drives' ctrl, which
+//              the profile press:2 set during recording), then
+//              Controller::step (the templates, which recompute the effect
+//              actuators' ctrl and the air forces), then mj_step: the only
+//              difference from raw is template evaluation. (Evaluating the
+//              profile itself is the harness standing in for an agent, not
+//              template cost: it is kept out of both episodes.)
 // Counters (medians over the iterations of a repetition; the report gives the
 // median of 5 repetitions):
 //   raw_steps_per_s, tmpl_steps_per_s   steps per second of each episode
 //   overhead_pct     t_templates / t_raw - 1 of the same iteration (each the
 //                    mean of its two episodes), end to end
-//   template_pct     time inside ctrl + Controller::step, timed in the loop
+//   template_pct     time inside Controller::step, timed in the loop
 //                    less the cost of a clock read (clock_ns, calibrated),
 //                    over the raw episode's time: the cost of template
 //                    evaluation as a % of a step
@@ -218,7 +222,6 @@ void BM_play(benchmark::State& state, const efc_bench::BenchSpec& spec) {
   mjModel* m = sim.m;
   mjData* d = sim.d;
   efc_mj::Controller& controller = *sim.controller;
-  const double dt = m->opt.timestep;
   const int steps = sim.steps;
 
   // Cost of a clock read, which every in-loop measurement carries once.
@@ -233,27 +236,34 @@ void BM_play(benchmark::State& state, const efc_bench::BenchSpec& spec) {
     clock_ns = std::chrono::duration<double, std::nano>(acc).count() / n;
   }
 
-  // One raw episode: mj_step on the recorded controls.
+  const int nu = m->nu;
+  const size_t nfree = sim.free_bodies.size();
+  // Step k's recorded inputs: every ctrl (the receptor drives the profile set
+  // and the effect actuators) and the air forces on free bodies.
+  auto replay_inputs = [&](int k) {
+    if (nu) mju_copy(d->ctrl, &sim.ctrl_log[static_cast<size_t>(k) * nu], nu);
+    for (size_t b = 0; b < nfree; ++b)
+      mju_copy(d->xfrc_applied + 6 * sim.free_bodies[b],
+               &sim.xfrc_log[(static_cast<size_t>(k) * nfree + b) * 6], 6);
+  };
+  // One raw episode: mj_step on the recorded inputs.
   auto raw_episode = [&]() {
     sim.reset(false);
-    const int nu = m->nu;
-    const size_t nfree = sim.free_bodies.size();
     const auto t0 = Clock::now();
     for (int k = 0; k < steps; ++k) {
-      if (nu) mju_copy(d->ctrl, &sim.ctrl_log[static_cast<size_t>(k) * nu], nu);
-      for (size_t b = 0; b < nfree; ++b)
-        mju_copy(d->xfrc_applied + 6 * sim.free_bodies[b],
-                 &sim.xfrc_log[(static_cast<size_t>(k) * nfree + b) * 6], 6);
+      replay_inputs(k);
       mj_step(m, d);
     }
     return std::chrono::duration<double>(Clock::now() - t0).count();
   };
-  // One templates episode: the harness loop as it runs, no clock inside.
+  // One templates episode: the same inputs, then the templates (which
+  // recompute the effect actuators' ctrl and the air forces themselves), no
+  // clock inside. The only difference from raw is Controller::step.
   auto templates_episode = [&]() {
     sim.reset(true);
     const auto t0 = Clock::now();
     for (int k = 0; k < steps; ++k) {
-      sim.set_drives(k * dt);  // what the harness does each step, minus logging
+      replay_inputs(k);
       controller.step(m, d);
       mj_step(m, d);
     }
@@ -275,8 +285,8 @@ void BM_play(benchmark::State& state, const efc_bench::BenchSpec& spec) {
       sim.reset(true);
       Clock::duration inner_d{};
       for (int k = 0; k < steps; ++k) {
+        replay_inputs(k);
         const auto a = Clock::now();
-        sim.set_drives(k * dt);
         controller.step(m, d);
         inner_d += Clock::now() - a;
         mj_step(m, d);

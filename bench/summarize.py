@@ -150,8 +150,8 @@ def main(argv):
             continue
         print()
         print(title + " (median of 5; steps/s of mj_step alone vs the harness step:")
-        print("  drive ctrl + Controller::step + mj_step; overhead = end to end; template % ="
-              " ctrl + templates timed in the loop / raw)")
+        print("  recorded inputs + Controller::step + mj_step; overhead = end to end; template % ="
+              " templates timed in the loop / raw)")
         rows, worst, worst_e2e = [], None, None
         for spec in specs:
             slot = play[(group, spec)]
