@@ -99,7 +99,7 @@ def main(argv):
         for k, slot in g.items():
             if slot and "error" in slot:
                 errors.append("%s/%s: %s" % (k, spec, slot["error"]))
-        ratio = own_ratio = kernel = "-"
+        ratio = own_ratio = writing = "-"
         c, l = g["compile_mujoco"], g["mujoco_load"]
         if c and l and "median" in c and "median" in l:
             r = ms(c["median"]) / ms(l["median"])
@@ -107,7 +107,7 @@ def main(argv):
             ratio = "%.2f" % r
             w = g["write_files"]
             if w and "median" in w:
-                kernel = "%.3f" % ms(w["median"])
+                writing = "%.3f" % ms(w["median"])
                 own = max(0.0, ms(c["median"]) - ms(w["median"])) / ms(l["median"])
                 own_ratios.append((own, spec))
                 own_ratio = "%.2f" % own
@@ -117,7 +117,7 @@ def main(argv):
                 parts = "%d" % slot["median"]["parts"]
                 break
         f = lambda e: "%.3f" % ms(e)
-        rows.append([spec, parts, cell(g["check"], f), cell(g["compile_mujoco"], f), kernel,
+        rows.append([spec, parts, cell(g["check"], f), cell(g["compile_mujoco"], f), writing,
                      cell(g["compile_mjcf"], f), cell(g["mujoco_load"], f), ratio, own_ratio])
     table(["spec", "parts", "check", "compile", "(writing files)", "(mjcf only)", "mujoco load",
            "ratio", "ratio w/o writing"], rows)

@@ -9,7 +9,7 @@
 namespace efc {
 
 struct EmbeddedFile {
-  const char* path;  // relative to the output folder: "efc_runtime/efc_mujoco.h"
+  const char* path;  // relative to the output folder: "efc_runtime/efc_runtime.h", "efc_mujoco_runtime.h"
   const char* text;
 };
 const std::vector<EmbeddedFile>& embedded_runtime_files();
