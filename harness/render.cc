@@ -1,12 +1,13 @@
 #include "harness/render.h"
 
-#include <GL/osmesa.h>
 #include <png.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+
+#include "harness/osmesa_loader.h"
 
 namespace efc {
 namespace {
@@ -43,14 +44,17 @@ OffscreenRenderer::OffscreenRenderer(const mjModel* m, int width, int height) {
   width_ = std::max(1, std::min(width > 0 ? width : maxw, maxw));
   height_ = std::max(1, std::min(height > 0 ? height : maxh, maxh));
 
-  OSMesaContext ctx = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
+  osmesa_api_ = osmesa_api(&error_);
+  if (!osmesa_api_) return;
+  const OsMesaApi& gl = *osmesa_api_;
+  OSMesaContext ctx = gl.create_context_ext(OSMESA_RGBA, 24, 8, 0, nullptr);
   if (!ctx) {
     error_ = "OSMesaCreateContextExt failed";
     return;
   }
   osmesa_ = ctx;
   osbuf_.assign(static_cast<size_t>(width_) * height_ * 4, 0);
-  if (!OSMesaMakeCurrent(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
+  if (!gl.make_current(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
     error_ = "OSMesaMakeCurrent failed";
     return;
   }
@@ -90,8 +94,9 @@ OffscreenRenderer::OffscreenRenderer(const mjModel* m, int width, int height) {
 
 OffscreenRenderer::~OffscreenRenderer() {
   if (osmesa_) {
+    const OsMesaApi& gl = *osmesa_api_;
     OSMesaContext ctx = static_cast<OSMesaContext>(osmesa_);
-    OSMesaMakeCurrent(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, std::max(1, width_),
+    gl.make_current(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, std::max(1, width_),
                       std::max(1, height_));
     try {
       ErrorGuard guard;
@@ -99,7 +104,7 @@ OffscreenRenderer::~OffscreenRenderer() {
       if (scene_made_) mjv_freeScene(&scn_);
     } catch (...) {
     }
-    OSMesaDestroyContext(ctx);
+    gl.destroy_context(ctx);
     osmesa_ = nullptr;
   }
 }
@@ -114,9 +119,10 @@ bool OffscreenRenderer::render_rgb(const mjModel* m, mjData* d, std::vector<unsi
     error_ = "render_rgb: null argument";
     return false;
   }
+  const OsMesaApi& gl = *osmesa_api_;
   OSMesaContext ctx = static_cast<OSMesaContext>(osmesa_);
-  if (OSMesaGetCurrentContext() != ctx &&
-      !OSMesaMakeCurrent(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
+  if (gl.get_current_context() != ctx &&
+      !gl.make_current(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
     error_ = "OSMesaMakeCurrent failed";
     return false;
   }

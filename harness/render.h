@@ -16,6 +16,8 @@
 
 namespace efc {
 
+struct OsMesaApi;  // harness/osmesa_loader.h
+
 class OffscreenRenderer {
  public:
   // width/height are clamped to the model's <visual><global offwidth offheight>.
@@ -40,6 +42,7 @@ class OffscreenRenderer {
   std::string error_;
   int width_ = 0;
   int height_ = 0;
+  const OsMesaApi* osmesa_api_ = nullptr;  // loaded on first use
   void* osmesa_ = nullptr;               // OSMesaContext
   std::vector<unsigned char> osbuf_;     // OSMesa colour buffer (RGBA)
   bool scene_made_ = false;

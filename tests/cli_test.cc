@@ -214,3 +214,27 @@ TEST(Cli, BadProfileCsvIsLocated) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find(prof.string() + ":3:"), std::string::npos) << r.err;
 }
+
+// OSMesa pulls in libLLVM, whose loading cost every command ~20 ms when efc
+// linked it; it is opened only when a frame is rendered.
+TEST(Cli, OnlyRenderingLoadsOSMesa) {
+  // LD_DEBUG=files makes the dynamic loader list every library it opens.
+  auto libraries_opened = [](const std::string& args) {
+    const fs::path log = scratch("ld-debug.txt");
+    const std::string cmd = "LD_DEBUG=files " + std::string(EFC_BINARY_DIR) + "/efc " + args +
+                            " >/dev/null 2>" + q(log) + " </dev/null";
+    const int status = std::system(cmd.c_str());
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << cmd;
+    return slurp(log);
+  };
+  const std::string check = libraries_opened("check " + q(kSource / "examples/desk_lamp.json"));
+  EXPECT_NE(check.find("libmujoco"), std::string::npos) << "LD_DEBUG listed nothing:\n" << check;
+  EXPECT_EQ(check.find("libOSMesa"), std::string::npos);
+  EXPECT_EQ(check.find("libLLVM"), std::string::npos);
+
+  const fs::path frames = scratch("osmesa-frames");
+  const std::string render = libraries_opened("play " + q(kSource / "examples/desk_lamp.json") +
+                                              " --profile press:2 --duration 0.1 --render " + q(frames));
+  EXPECT_NE(render.find("libOSMesa"), std::string::npos);
+  EXPECT_TRUE(fs::exists(frames / "frame_00000.png"));
+}
