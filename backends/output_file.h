@@ -1,12 +1,27 @@
-// Writing a backend's text outputs: one helper for every target.
+// Writing a backend's outputs: one helper for every target.
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include "compiler/diagnostics.h"
 
 namespace efc {
+
+// One file of a target's output, generated in memory before anything is
+// written: its path relative to the target folder ("meshes/a.stl") and bytes.
+struct OutputFile {
+  std::string path;
+  std::string bytes;
+};
 
 // Writes `text` to `path` (binary, so line endings are exactly as generated).
 // False with the reason in *error (the system's message) on failure.
 bool write_text_file(const std::string& path, const std::string& text, std::string* error);
+
+// Writes every file under `dir` (which exists), creating the subfolders their
+// paths name. False after adding an E0900 error naming the file.
+bool write_output_files(const std::string& dir, const std::vector<OutputFile>& files,
+                        Diagnostics& diags);
 
 }  // namespace efc

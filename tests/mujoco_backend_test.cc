@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -24,6 +25,7 @@
 
 #include "backends/backend.h"
 #include "backends/mujoco/mujoco_backend.h"
+#include "compiler/core/load.h"
 #include "compiler/ir.h"
 #include "runtime/mujoco/efc_mujoco.h"
 
@@ -697,6 +699,35 @@ TEST(MujocoMjcf, UnwritableFolderIsAnErrorNotACrash) {
   EXPECT_FALSE(efc::find_backend("mujoco")->emit(efc_test::make_test_object(), "/proc/efc_no_such_dir", diags));
   ASSERT_TRUE(diags.has_errors());
   EXPECT_EQ(diags.items().front().code, "E0900");
+}
+
+// The in-memory output (what compile_bench times as efc's own work) is
+// exactly what `emit` writes: the same paths, the same bytes, nothing else.
+TEST(MujocoMjcf, GeneratedFilesAreExactlyWhatEmitWrites) {
+  efc::Diagnostics diags;
+  // kitchen_faucet has OBJ meshes: the meshes/ subfolder is covered too.
+  auto obj = efc::load_spec(std::string(EFC_SOURCE_DIR) + "/examples/kitchen_faucet.json", {}, diags);
+  ASSERT_TRUE(obj) << diags.items().size();
+  std::vector<efc::OutputFile> files;
+  ASSERT_TRUE(efc::generate_mujoco_target(*obj, diags, &files));
+  const std::string dir = efc_test::temp_dir("generated_vs_written");
+  ASSERT_TRUE(efc::find_backend("mujoco")->emit(*obj, dir, diags));
+  std::map<std::string, std::string> written;
+  namespace fs = std::filesystem;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    written[fs::relative(e.path(), dir).string()] = std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  std::map<std::string, std::string> generated;
+  for (const efc::OutputFile& f : files) EXPECT_TRUE(generated.emplace(f.path, f.bytes).second) << f.path;
+  EXPECT_EQ(written.size(), generated.size());
+  EXPECT_TRUE(std::any_of(written.begin(), written.end(),
+                          [](const auto& w) { return w.first.rfind("meshes/", 0) == 0; }));
+  for (const auto& [path, bytes] : generated) {
+    ASSERT_TRUE(written.count(path)) << path << " was generated but not written";
+    EXPECT_EQ(written[path], bytes) << path;
+  }
 }
 
 TEST(MujocoMjcf, TooManyLightsIsAWarning) {

@@ -6,10 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "backends/output_file.h"
+#include "compiler/diagnostics.h"
 #include "compiler/ir.h"
 
 namespace efc {
+struct MjcfOptions;
 namespace mjcf {
+struct Plan;
 
 // Shortest text that reads back as exactly `v` (std::to_chars): XML and C++
 // both parse it, and generated code gets bit-identical doubles.
@@ -59,4 +63,10 @@ constexpr double kDefaultRgba[4] = {0.7, 0.7, 0.72, 1.0};
 
 // The generated <name>_callbacks.h (the C API of <name>_callbacks.cc).
 std::string callbacks_header(const Object& obj);
+
+// The model's files (meshes, then <name>.xml) from an existing plan, so a
+// caller that also needs the plan (the README) makes it once.
+bool generate_model_files(const Object& obj, const MjcfOptions& options, mjcf::Plan* plan,
+                          Diagnostics& diags, std::vector<OutputFile>* files);
+
 }  // namespace efc

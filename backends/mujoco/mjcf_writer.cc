@@ -291,33 +291,32 @@ std::string emit_mjcf(const Object& obj, const MjcfOptions& options) {
   return Writer(obj, options, &plan).run();
 }
 
+bool generate_model_files(const Object& obj, const MjcfOptions& options, mjcf::Plan* plan,
+                          Diagnostics& diags, std::vector<OutputFile>* files) {
+  for (const std::string& w : plan->warnings) diags.warning("W0900", obj.file, 0, 0, "", w);
+  for (const mjcf::MeshAsset& m : plan->meshes) {
+    if (!m.mesh) {
+      diags.error("E0900", m.file, 0, 0, "", "mesh '" + m.name + "' was not loaded (resolve() loads meshes)");
+      return false;
+    }
+    files->push_back({m.file, binary_stl(*m.mesh, m.offset)});
+  }
+  files->push_back({obj.name + ".xml", Writer(obj, options, plan).run()});
+  return true;
+}
+
+bool generate_mujoco_model(const Object& obj, const MjcfOptions& options, Diagnostics& diags,
+                           std::vector<OutputFile>* files) {
+  mjcf::Plan plan = mjcf::make_plan(obj, options);
+  return generate_model_files(obj, options, &plan, diags, files);
+}
+
 bool write_mujoco_model(const Object& obj, const std::string& dir, const MjcfOptions& options,
                         Diagnostics& diags, std::string* xml_path) {
-  mjcf::Plan plan = mjcf::make_plan(obj, options);
-  for (const std::string& w : plan.warnings) diags.warning("W0900", obj.file, 0, 0, "", w);
-  const std::string xml = Writer(obj, options, &plan).run();
-  std::string error;
-  if (!plan.meshes.empty() && !mjcf::make_dirs(dir + "/" + options.mesh_dir, &error)) {
-    diags.error("E0900", dir, 0, 0, "", "cannot create '" + dir + "/" + options.mesh_dir + "': " + error);
+  std::vector<OutputFile> files;
+  if (!generate_mujoco_model(obj, options, diags, &files) || !write_output_files(dir, files, diags))
     return false;
-  }
-  for (const mjcf::MeshAsset& m : plan.meshes) {
-    const std::string path = dir + "/" + m.file;
-    if (!m.mesh) {
-      diags.error("E0900", path, 0, 0, "", "mesh '" + m.name + "' was not loaded (resolve() loads meshes)");
-      return false;
-    }
-    if (!write_binary_stl(path, *m.mesh, m.offset, &error)) {
-      diags.error("E0900", path, 0, 0, "", "cannot write mesh '" + path + "': " + error);
-      return false;
-    }
-  }
-  const std::string path = dir + "/" + obj.name + ".xml";
-  if (!write_text_file(path, xml, &error)) {
-    diags.error("E0900", path, 0, 0, "", "cannot write '" + path + "': " + error);
-    return false;
-  }
-  if (xml_path) *xml_path = path;
+  if (xml_path) *xml_path = dir + "/" + obj.name + ".xml";
   return true;
 }
 

@@ -124,27 +124,24 @@ class MujocoBackend : public Backend {
     return "MuJoCo 2.2 MJCF + meshes + generated mjcb_control callbacks (self-contained)";
   }
   bool emit(const Object& obj, const std::string& dir, Diagnostics& diags) const override {
-    MjcfOptions options;
-    std::string xml_path;
-    if (!write_mujoco_model(obj, dir, options, diags, &xml_path)) return false;
-    std::string error;
-    auto put = [&](const std::string& rel, const std::string& text) {
-      const std::string path = dir + "/" + rel;
-      if (write_text_file(path, text, &error)) return true;
-      diags.error("E0900", path, 0, 0, "", "cannot write '" + path + "': " + error);
-      return false;
-    };
-    for (const EmbeddedFile& f : embedded_mujoco_runtime_files())
-      if (!put(f.path, f.text)) return false;
-    const mjcf::Plan plan = mjcf::make_plan(obj, options);
-    return put(obj.name + "_callbacks.cc", emit_callbacks(obj)) &&
-           put(obj.name + "_callbacks.h", callbacks_header(obj)) &&
-           put("CMakeLists.txt", output_cmake(obj)) &&
-           put("README.md", output_readme(obj, plan, build_bindings(obj)));
+    std::vector<OutputFile> files;
+    return generate_mujoco_target(obj, diags, &files) && write_output_files(dir, files, diags);
   }
 };
 
 }  // namespace
+
+bool generate_mujoco_target(const Object& obj, Diagnostics& diags, std::vector<OutputFile>* files) {
+  const MjcfOptions options;
+  mjcf::Plan plan = mjcf::make_plan(obj, options);
+  if (!generate_model_files(obj, options, &plan, diags, files)) return false;
+  for (const EmbeddedFile& f : embedded_mujoco_runtime_files()) files->push_back({f.path, f.text});
+  files->push_back({obj.name + "_callbacks.cc", emit_callbacks(obj)});
+  files->push_back({obj.name + "_callbacks.h", callbacks_header(obj)});
+  files->push_back({"CMakeLists.txt", output_cmake(obj)});
+  files->push_back({"README.md", output_readme(obj, plan, build_bindings(obj))});
+  return true;
+}
 
 const Backend* mujoco_backend() {
   static const MujocoBackend backend;

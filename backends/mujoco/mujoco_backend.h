@@ -1,11 +1,12 @@
 // The MuJoCo target: MJCF with mesh assets, plus <name>_callbacks.cc (a
 // generated mjcb_control over the efc runtime) and a README, self-contained
-// (the runtime sources are copied next to them).
+// (the runtime is copied next to them as one header).
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "backends/output_file.h"
 #include "compiler/diagnostics.h"
 #include "compiler/ir.h"
 #include "runtime/mujoco/efc_mujoco.h"
@@ -27,6 +28,16 @@ std::vector<efc_mj::FunctionBinding> build_bindings(const Object& obj);
 
 // The MJCF document (mesh files referenced under options.mesh_dir).
 std::string emit_mjcf(const Object& obj, const MjcfOptions& options);
+
+// <name>.xml and its mesh files, in memory (plan warnings go to diags).
+// False after adding an error (a mesh that was never loaded).
+bool generate_mujoco_model(const Object& obj, const MjcfOptions& options, Diagnostics& diags,
+                           std::vector<OutputFile>* files);
+
+// The whole `--target mujoco` folder in memory: the model, the callbacks
+// (.cc/.h), efc_mujoco_runtime.h, CMakeLists.txt and README.md; what
+// `efc compile` writes. Everything efc computes, nothing the file system does.
+bool generate_mujoco_target(const Object& obj, Diagnostics& diags, std::vector<OutputFile>* files);
 
 // Writes <dir>/<name>.xml and its meshes (no callbacks): what `efc play` loads.
 // Returns false after adding an error (e.g. an unwritable folder).

@@ -53,8 +53,10 @@ struct OrientedBox {
 // Oriented bounding box by principal components of the sample points' hull.
 OrientedBox oriented_bounding_box(const Geometry& g);
 
-// Writes a binary STL of `mesh` translated by `offset` (for backends that
-// place meshes in a link frame). Returns false with a reason on I/O failure.
+// A binary STL of `mesh` translated by `offset` (for backends that place
+// meshes in a link frame), as bytes.
+std::string binary_stl(const MeshData& mesh, const Vec3& offset);
+// The same, written to `path`. Returns false with a reason on I/O failure.
 bool write_binary_stl(const std::string& path, const MeshData& mesh, const Vec3& offset,
                       std::string* error);
 

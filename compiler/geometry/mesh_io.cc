@@ -111,17 +111,17 @@ bool is_closed(const MeshData& m) {
   return true;
 }
 
-void put_u32(std::ofstream& f, uint32_t v) {
-  const unsigned char b[4] = {static_cast<unsigned char>(v), static_cast<unsigned char>(v >> 8),
-                              static_cast<unsigned char>(v >> 16), static_cast<unsigned char>(v >> 24)};
-  f.write(reinterpret_cast<const char*>(b), 4);
+void put_u32(std::string& out, uint32_t v) {
+  const char b[4] = {static_cast<char>(v & 0xff), static_cast<char>((v >> 8) & 0xff),
+                     static_cast<char>((v >> 16) & 0xff), static_cast<char>((v >> 24) & 0xff)};
+  out.append(b, 4);
 }
-void put_f32(std::ofstream& f, double d) {
+void put_f32(std::string& out, double d) {
   // STL is little-endian IEEE float whatever the host.
   const float x = static_cast<float>(d);
   uint32_t u;
   std::memcpy(&u, &x, 4);
-  put_u32(f, u);
+  put_u32(out, u);
 }
 
 }  // namespace
@@ -184,6 +184,28 @@ bool load_mesh(const std::string& path, const Vec3& scale, MeshData* out, std::s
   return true;
 }
 
+std::string binary_stl(const MeshData& mesh, const Vec3& offset) {
+  std::string out;
+  out.reserve(84 + 50 * mesh.triangles.size());
+  // The header must not start with "solid", or readers take it for ASCII.
+  char header[80] = {};
+  std::snprintf(header, sizeof header, "binary STL written by efc");
+  out.append(header, sizeof header);
+  put_u32(out, static_cast<uint32_t>(mesh.triangles.size()));
+  const int nv = static_cast<int>(mesh.vertices.size());
+  for (const auto& t : mesh.triangles) {
+    Vec3 p[3];
+    for (int c = 0; c < 3; ++c)
+      p[c] = (t[c] >= 0 && t[c] < nv) ? add(mesh.vertices[t[c]], offset) : offset;
+    const Vec3 n = normalized(cross(sub(p[1], p[0]), sub(p[2], p[0])));
+    for (int k = 0; k < 3; ++k) put_f32(out, n[k]);
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) put_f32(out, p[c][k]);
+    out.append(2, '\0');  // attribute byte count
+  }
+  return out;
+}
+
 bool write_binary_stl(const std::string& path, const MeshData& mesh, const Vec3& offset,
                       std::string* error) {
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
@@ -191,23 +213,8 @@ bool write_binary_stl(const std::string& path, const MeshData& mesh, const Vec3&
     if (error) *error = "cannot open '" + path + "' for writing";
     return false;
   }
-  // The header must not start with "solid", or readers take it for ASCII.
-  char header[80] = {};
-  std::snprintf(header, sizeof header, "binary STL written by efc");
-  f.write(header, sizeof header);
-  put_u32(f, static_cast<uint32_t>(mesh.triangles.size()));
-  const int nv = static_cast<int>(mesh.vertices.size());
-  for (const auto& t : mesh.triangles) {
-    Vec3 p[3];
-    for (int c = 0; c < 3; ++c)
-      p[c] = (t[c] >= 0 && t[c] < nv) ? add(mesh.vertices[t[c]], offset) : offset;
-    const Vec3 n = normalized(cross(sub(p[1], p[0]), sub(p[2], p[0])));
-    for (int k = 0; k < 3; ++k) put_f32(f, n[k]);
-    for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 3; ++k) put_f32(f, p[c][k]);
-    const char attr[2] = {0, 0};
-    f.write(attr, 2);
-  }
+  const std::string bytes = binary_stl(mesh, offset);
+  f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   f.close();
   if (!f) {
     if (error) *error = "failed writing '" + path + "'";
