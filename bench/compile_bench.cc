@@ -3,21 +3,18 @@
 //   check/<spec>           efc::load_spec = read + resolve + check (`efc check`)
 //   compile_mujoco/<spec>  load_spec + the mujoco backend's emit into an empty
 //                          folder (`efc compile --target mujoco`, minus the CLI)
-//   compile_mjcf/<spec>    load_spec + write_mujoco_model: only the MJCF and its
-//                          meshes (what MuJoCo loads), without the callbacks,
-//                          the copied runtime, CMakeLists.txt and README.md
-//   write_files/<spec>     writing the files compile_mujoco writes, their text
-//                          already in memory: the file system's share of it
+//   generate_mujoco/<spec> load_spec + generate_mujoco_target: the same output
+//                          made in memory, not written: efc's own work
+//   write_files/<spec>     writing those files (write_output_files, as emit
+//                          does), their bytes already in memory: the file
+//                          system's share of compile_mujoco
 //   mujoco_load/<spec>     mj_loadXML of the emitted XML: what MuJoCo itself
 //                          takes to load the result (compile should be well under)
 // Each is repeated 5 times and reported as mean / median / stddev (ms).
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>
 
-#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -78,75 +75,51 @@ void BM_compile(benchmark::State& state, const efc_bench::BenchSpec& spec, const
   set_counters(state, *obj);
 }
 
-void BM_compile_mjcf(benchmark::State& state, const efc_bench::BenchSpec& spec) {
+// Everything `efc compile --target mujoco` computes, without the file system:
+// reading, checking, and generating every output file in memory.
+void BM_generate(benchmark::State& state, const efc_bench::BenchSpec& spec) {
   std::string error;
   const auto obj = efc_bench::load(spec.path, &error);
   if (!obj) return state.SkipWithError(error.c_str());
-  efc_bench::TempDir tmp("efc-bench-mjcf");
+  for (auto _ : state) {
+    efc::Diagnostics diags;
+    auto o = efc::load_spec(spec.path, efc::LoadOptions{}, diags);
+    std::vector<efc::OutputFile> files;
+    if (!o || !efc::generate_mujoco_target(*o, diags, &files)) {
+      state.SkipWithError(("generate failed for " + spec.path).c_str());
+      break;
+    }
+    benchmark::DoNotOptimize(files.data());
+  }
+  set_counters(state, *obj);
+}
+
+// Writing the files `efc compile --target mujoco` writes for this spec (their
+// bytes already in memory; the same write_output_files as emit) into an empty
+// folder: what the file system charges for the output alone, which any tool
+// producing these files would pay.
+void BM_write_files(benchmark::State& state, const efc_bench::BenchSpec& spec) {
+  std::string error;
+  const auto obj = efc_bench::load(spec.path, &error);
+  if (!obj) return state.SkipWithError(error.c_str());
+  efc::Diagnostics diags;
+  std::vector<efc::OutputFile> files;
+  if (!efc::generate_mujoco_target(*obj, diags, &files))
+    return state.SkipWithError(("generate failed for " + spec.path).c_str());
+  efc_bench::TempDir tmp("efc-bench-files");
   const std::string out = (tmp.path() / "mujoco").string();
   for (auto _ : state) {
     std::error_code ec;
     fs::create_directory(out, ec);
-    efc::Diagnostics diags;
-    auto o = efc::load_spec(spec.path, efc::LoadOptions{}, diags);
-    std::string xml;
-    if (!o || !efc::write_mujoco_model(*o, out, efc::MjcfOptions{}, diags, &xml)) {
-      state.SkipWithError(("write_mujoco_model failed for " + spec.path).c_str());
+    if (!efc::write_output_files(out, files, diags)) {
+      state.SkipWithError(("cannot write into " + out).c_str());
       break;
     }
     state.PauseTiming();
     fs::remove_all(out, ec);
     state.ResumeTiming();
   }
-  set_counters(state, *obj);
-}
-
-// Writing the same files `efc compile --target mujoco` writes for this spec
-// (their text already in memory; the same write_text_file), into an empty
-// folder: what the file system charges for the output alone, which any tool
-// producing these files would pay. compile_mujoco minus this is efc's own work.
-void BM_write_files(benchmark::State& state, const efc_bench::BenchSpec& spec) {
-  std::string error;
-  const auto obj = efc_bench::load(spec.path, &error);
-  if (!obj) return state.SkipWithError(error.c_str());
-  efc_bench::TempDir tmp("efc-bench-files");
-  const fs::path emitted = tmp.path() / "emitted";
-  fs::create_directory(emitted);
-  efc::Diagnostics diags;
-  if (!efc::find_backend("mujoco")->emit(*obj, emitted.string(), diags))
-    return state.SkipWithError(("compile failed for " + spec.path).c_str());
-  // The output as (folder?, relative path, text), folders before their files.
-  struct Entry {
-    bool folder;
-    std::string rel, text;
-  };
-  std::vector<Entry> entries;
-  for (const auto& e : fs::recursive_directory_iterator(emitted)) {
-    const std::string rel = fs::relative(e.path(), emitted).string();
-    if (e.is_directory()) {
-      entries.push_back({true, rel, {}});
-    } else {
-      std::ifstream in(e.path(), std::ios::binary);
-      entries.push_back({false, rel, std::string(std::istreambuf_iterator<char>(in), {})});
-    }
-  }
-  std::stable_partition(entries.begin(), entries.end(), [](const Entry& e) { return e.folder; });
-  const std::string out = (tmp.path() / "mujoco").string();
-  for (auto _ : state) {
-    std::error_code ec;
-    fs::create_directory(out, ec);
-    for (const Entry& e : entries) {
-      const std::string path = out + "/" + e.rel;
-      if (e.folder ? !fs::create_directory(path, ec) : !efc::write_text_file(path, e.text, &error)) {
-        state.SkipWithError(("cannot write " + path).c_str());
-        break;
-      }
-    }
-    state.PauseTiming();
-    fs::remove_all(out, ec);
-    state.ResumeTiming();
-  }
-  state.counters["files"] = static_cast<double>(entries.size());
+  state.counters["files"] = static_cast<double>(files.size());
   set_counters(state, *obj);
 }
 
@@ -200,7 +173,7 @@ int main(int argc, char** argv) {
     for (const char* target : {"mujoco", "urdf", "bullet"})
       add(std::string("compile_") + target, spec,
           [target](benchmark::State& st, const efc_bench::BenchSpec& sp) { BM_compile(st, sp, target); });
-    add("compile_mjcf", spec, BM_compile_mjcf);
+    add("generate_mujoco", spec, BM_generate);
     add("write_files", spec, BM_write_files);
     add("mujoco_load", spec, BM_mujoco_load);
   }

@@ -4,20 +4,22 @@ compile_bench and play_bench and prints, per spec, the median check, compile
 and MuJoCo load times with the compile/load ratio, and the steps per second
 raw vs with templates with the template overhead. Standard library only.
 
-usage: summarize.py [--wall] COMPILE_JSON PLAY_JSON
+usage: summarize.py [--wall] COMPILE_JSON PLAY_JSON [FIRST_CALL_JSON]
 
 Compile times are CPU time (user + system) of the benchmark process, which
 other processes on the machine disturb less than wall time; --wall uses wall
-time instead. "(writing files)" is write_files: writing the same output files
-from memory into an empty folder; "ratio w/o writing" is (compile - that) /
-MuJoCo load, efc's own work.
+time instead. "(in memory)" is generate_mujoco: the same compile with its
+files made in memory and not written (efc's own work); "(writing files)" is
+write_files: writing those files into an empty folder. FIRST_CALL_JSON (first_call_bench --json) adds
+the first call in a fresh process: one compile against one MuJoCo load, each
+the first of its process.
 """
 import json
 import re
 import sys
 
 TEMPLATE_TARGET_PCT = 3.0  # template evaluation, objects without particles
-RATIO_TARGET = 1.0         # compile must be (well) under MuJoCo's own load
+WELL_UNDER = 0.5           # compile "well under" MuJoCo's own load: at most half of it
 
 
 def read(path):
@@ -73,12 +75,41 @@ def table(header, rows):
         print(line(r))
 
 
+def verdict(what, ratios, target):
+    """One line: worst and median of (ratio, spec) pairs against the target."""
+    worst = max(ratios)
+    large = [r for r, s in ratios if s.startswith("large_")]
+    print("%s: worst %.2f (%s), median %.2f%s; target < %.1f: %s" % (
+        what, worst[0], worst[1], sorted(r for r, _ in ratios)[len(ratios) // 2],
+        ", 200-part spec %.3f" % large[0] if large else "", target,
+        "met" if worst[0] < target else "NOT met"))
+
+
+def first_call(path):
+    """The first_call_bench table: each figure the first call of a new process."""
+    with open(path) as f:
+        data = json.load(f)
+    key = "wall_ms" if TIME_FIELD == "real_time" else "cpu_ms"
+    print()
+    print("First call in a fresh process (%s time, median of %d processes, ms): what one `efc"
+          " compile` and one program loading the result each pay" % (
+              "wall" if key == "wall_ms" else "CPU", data.get("runs", 0)))
+    rows, ratios = [], []
+    for e in sorted(data.get("specs", []), key=lambda e: (e["spec"].startswith("large_"), e["spec"])):
+        c, l = e["compile_" + key], e["load_" + key]
+        ratios.append((c / l, e["spec"]))
+        rows.append([e["spec"], "%d" % e["parts"], "%.3f" % c, "%.3f" % l, "%.2f" % (c / l)])
+    table(["spec", "parts", "compile", "mujoco load", "ratio"], rows)
+    if ratios:
+        verdict("first call: compile / MuJoCo load", ratios, WELL_UNDER)
+
+
 def main(argv):
     global TIME_FIELD
     if "--wall" in argv:
         argv = [a for a in argv if a != "--wall"]
         TIME_FIELD = "real_time"
-    if len(argv) != 3:
+    if len(argv) not in (3, 4):
         print(__doc__, file=sys.stderr)
         return 2
     ctx, comp = read(argv[1])
@@ -92,47 +123,41 @@ def main(argv):
     print()
     print("Compile (%s time, median of 5 repetitions, ms; ratio = compile / MuJoCo load)" % (
         "wall" if TIME_FIELD == "real_time" else "CPU"))
-    rows, ratios, own_ratios = [], [], []
-    for spec in specs_in(comp, {"check", "compile_mujoco", "compile_mjcf", "mujoco_load"}):
+    rows, ratios, mem_ratios = [], [], []
+    for spec in specs_in(comp, {"check", "compile_mujoco", "generate_mujoco", "mujoco_load"}):
         g = {k: comp.get((k, spec))
-             for k in ("check", "compile_mujoco", "compile_mjcf", "write_files", "mujoco_load")}
+             for k in ("check", "compile_mujoco", "generate_mujoco", "write_files", "mujoco_load")}
         for k, slot in g.items():
             if slot and "error" in slot:
                 errors.append("%s/%s: %s" % (k, spec, slot["error"]))
-        ratio = own_ratio = writing = "-"
-        c, l = g["compile_mujoco"], g["mujoco_load"]
-        if c and l and "median" in c and "median" in l:
-            r = ms(c["median"]) / ms(l["median"])
-            ratios.append((r, spec))
-            ratio = "%.2f" % r
-            w = g["write_files"]
-            if w and "median" in w:
-                writing = "%.3f" % ms(w["median"])
-                own = max(0.0, ms(c["median"]) - ms(w["median"])) / ms(l["median"])
-                own_ratios.append((own, spec))
-                own_ratio = "%.2f" % own
+        ratio = mem_ratio = "-"
+        c, m, l = g["compile_mujoco"], g["generate_mujoco"], g["mujoco_load"]
+        if l and "median" in l:
+            if c and "median" in c:
+                r = ms(c["median"]) / ms(l["median"])
+                ratios.append((r, spec))
+                ratio = "%.2f" % r
+            if m and "median" in m:
+                r = ms(m["median"]) / ms(l["median"])
+                mem_ratios.append((r, spec))
+                mem_ratio = "%.2f" % r
         parts = "-"
         for slot in g.values():
             if slot and "median" in slot and "parts" in slot["median"]:
                 parts = "%d" % slot["median"]["parts"]
                 break
         f = lambda e: "%.3f" % ms(e)
-        rows.append([spec, parts, cell(g["check"], f), cell(g["compile_mujoco"], f), writing,
-                     cell(g["compile_mjcf"], f), cell(g["mujoco_load"], f), ratio, own_ratio])
-    table(["spec", "parts", "check", "compile", "(writing files)", "(mjcf only)", "mujoco load",
-           "ratio", "ratio w/o writing"], rows)
+        rows.append([spec, parts, cell(g["check"], f), cell(g["compile_mujoco"], f),
+                     cell(g["generate_mujoco"], f), cell(g["write_files"], f),
+                     cell(g["mujoco_load"], f), ratio, mem_ratio])
+    table(["spec", "parts", "check", "compile", "(in memory)", "(writing files)", "mujoco load",
+           "ratio", "ratio in memory"], rows)
+    if mem_ratios:
+        verdict("efc's own work (in memory) / MuJoCo load", mem_ratios, WELL_UNDER)
     if ratios:
-        worst = max(ratios)
-        large = [r for r, s in ratios if s.startswith("large_")]
-        print("compile/load ratio: worst %.2f (%s), median %.2f%s; target < %.1f: %s" % (
-            worst[0], worst[1], sorted(r for r, _ in ratios)[len(ratios) // 2],
-            ", 200-part spec %.3f" % large[0] if large else "", RATIO_TARGET,
-            "met" if worst[0] < RATIO_TARGET else "NOT met"))
-    if own_ratios:
-        worst = max(own_ratios)
-        print("without writing the files (compile - writing the same files from memory, over"
-              " MuJoCo load): worst %.2f (%s), median %.2f" % (
-                  worst[0], worst[1], sorted(r for r, _ in own_ratios)[len(own_ratios) // 2]))
+        verdict("compile with its files written / MuJoCo load", ratios, WELL_UNDER)
+    if len(argv) == 4:
+        first_call(argv[3])
     print()
     print("Other targets: load_spec + emit (ms, median)")
     other = []
