@@ -66,6 +66,17 @@ double cross_section(const mjModel* m, const mjData* d, int g, const double* a) 
 
 Controller::Controller(const mjModel* m, const FunctionBinding* table, int count)
     : rows_(table, table + (count > 0 ? count : 0)) {
+  for (const FunctionBinding& b : rows_) {
+    Hot h;
+    h.params = b.params;
+    for (int k = 0; k < 3; ++k) h.direction[k] = b.direction[k], h.color[k] = b.color[k];
+    h.speed = b.speed;
+    h.droplet_count = b.droplet_count;
+    h.cone_angle = b.cone_angle;
+    h.reach = b.reach;
+    h.glow_max = b.glow_max;
+    hot_.push_back(h);
+  }
   states_.resize(rows_.size());
   resolved_.resize(rows_.size());
   readouts_.resize(rows_.size());
@@ -162,7 +173,7 @@ void Controller::reset(const mjModel* m, mjData* d) {
   for (size_t i = 0; i < rows_.size(); ++i) {
     Resolved& r = resolved_[i];
     const double s_R = d->qpos[r.receptor_qpos];
-    efc_rt::function_init(rows_[i].params, s_R, &states_[i]);
+    efc_rt::function_init(hot_[i].params, s_R, &states_[i]);
     for (size_t k = 0; k < r.droplets.size(); ++k) park(m, d, r.droplets[k], static_cast<int>(k));
     r.emit_times.clear();
     r.next_droplet = 0;
@@ -178,7 +189,7 @@ void Controller::step(const mjModel* m, mjData* d) {
   const double dt = m->opt.timestep;
   for (size_t i = 0; i < rows_.size(); ++i) {
     const double s_R = d->qpos[resolved_[i].receptor_qpos];
-    const int emit = efc_rt::function_step(rows_[i].params, s_R, dt, &states_[i]);
+    const int emit = efc_rt::function_step(hot_[i].params, s_R, dt, &states_[i]);
     readouts_[i].s_R = s_R;
     readouts_[i].s_E = states_[i].mapping.s_E;
     apply(m, d, static_cast<int>(i), emit);
@@ -194,7 +205,7 @@ void Controller::clear_air_forces(mjData* d) {
 }
 
 void Controller::apply(const mjModel* m, mjData* d, int i, int emit) {
-  const FunctionBinding& b = rows_[i];
+  const Hot& b = hot_[i];
   Resolved& r = resolved_[i];
   const efc_rt::EffectParams& ep = b.params.effect;
   const double out = states_[i].effect.output;
@@ -251,7 +262,7 @@ void Controller::apply(const mjModel* m, mjData* d, int i, int emit) {
 }
 
 void Controller::fluid(const mjModel* m, mjData* d, int i, int emit) {
-  const FunctionBinding& b = rows_[i];
+  const Hot& b = hot_[i];
   Resolved& r = resolved_[i];
   const double now = d->time;
   // Recycle droplets that lived long enough or fell well below the object;
@@ -302,7 +313,7 @@ void Controller::fluid(const mjModel* m, mjData* d, int i, int emit) {
 }
 
 void Controller::airflow(const mjModel* m, mjData* d, int i) {
-  const FunctionBinding& b = rows_[i];
+  const Hot& b = hot_[i];
   const Resolved& r = resolved_[i];
   const double out = states_[i].effect.output;
   readouts_[i].measured = efc_rt::air_speed_at(out, 0, 0, b.cone_angle, b.reach);

@@ -93,13 +93,28 @@ class Controller {
     std::vector<double> emit_times;  // for the flow window
     size_t next_droplet = 0;
   };
+  // What step() reads of a row: the row without its four names, in one
+  // compact array. A row is mostly names (4 x 72 bytes); reading the rows
+  // themselves every step would pull several times more cache lines through
+  // the cache than the templates need, evicting MuJoCo's own data.
+  struct Hot {
+    efc_rt::FunctionParams params;
+    double direction[3];
+    double color[3];
+    double speed;
+    int droplet_count;
+    double cone_angle;
+    double reach;
+    double glow_max;
+  };
   void apply(const mjModel* m, mjData* d, int i, int emit);
   void park(const mjModel* m, mjData* d, Droplet& drop, int index);
   void fluid(const mjModel* m, mjData* d, int i, int emit);
   void airflow(const mjModel* m, mjData* d, int i);
   void clear_air_forces(mjData* d);
 
-  std::vector<FunctionBinding> rows_;
+  std::vector<FunctionBinding> rows_;  // names: resolving, binding(i)
+  std::vector<Hot> hot_;               // the rest: every step
   std::vector<efc_rt::FunctionState> states_;
   std::vector<Resolved> resolved_;
   std::vector<FunctionReadout> readouts_;
