@@ -11,6 +11,8 @@
 #ifndef EFC_RUNTIME_H_
 #define EFC_RUNTIME_H_
 
+#include <cmath>
+
 namespace efc_rt {
 
 enum MappingKind { kBinary = 0, kStep = 1, kLinear = 2, kCumulative = 3 };
@@ -47,12 +49,12 @@ struct MappingState {
   long presses;
 };
 
-double clamp_between(double v, double a, double b);
-double press_band(const MappingParams& p);
+inline double clamp_between(double v, double a, double b);
+inline double press_band(const MappingParams& p);
 
 void mapping_init(const MappingParams& p, double s_R0, MappingState* st);
 // Advances the mapping to receptor state s_R; returns the new s_E.
-double mapping_update(const MappingParams& p, double s_R, MappingState* st);
+inline double mapping_update(const MappingParams& p, double s_R, MappingState* st);
 
 struct EffectParams {
   int kind;              // EffectKind
@@ -81,10 +83,10 @@ struct EffectState {
 void effect_init(const EffectParams& p, EffectState* st);
 // Advances the effect by dt seconds towards s_E. Returns how many droplets to
 // emit during this step (fluid; 0 for every other effect).
-int effect_step(const EffectParams& p, double s_E, double dt, EffectState* st);
+inline int effect_step(const EffectParams& p, double s_E, double dt, EffectState* st);
 
 // Droplets per second for a flow in L/min.
-double droplet_rate(const EffectParams& p, double flow_l_per_min);
+inline double droplet_rate(const EffectParams& p, double flow_l_per_min);
 
 // Air speed (m/s) at a point `distance` metres along the outlet axis and
 // `angle` radians off it, for outlet speed s (m/s): full speed at the outlet,
@@ -108,7 +110,102 @@ struct FunctionState {
 void function_init(const FunctionParams& p, double s_R0, FunctionState* st);
 // One control step: map s_R, then advance the effect by dt. Returns droplets
 // to emit (fluid), else 0. The new s_E is st->mapping.s_E.
-int function_step(const FunctionParams& p, double s_R, double dt, FunctionState* st);
+inline int function_step(const FunctionParams& p, double s_R, double dt, FunctionState* st);
+
+// ---- Inline definitions: what runs every control step ----
+// Inline so that each binding compiles them into its own control loop (the
+// harness, the generated callbacks, the Bullet program): called across
+// translation units, their code sat apart from the loop and made MuJoCo's own
+// step measurably slower around it (bench/README.md, playback).
+
+inline double clamp_between(double v, double a, double b) {
+  const double lo = a < b ? a : b;
+  const double hi = a < b ? b : a;
+  return v < lo ? lo : (v > hi ? hi : v);
+}
+
+inline double press_band(const MappingParams& p) { return 0.01 * std::fabs(p.r_hi - p.r_lo); }
+
+namespace detail {
+// Returns 1 when s_R completes a press (rising edge through the threshold).
+inline int press_edge(const MappingParams& p, double s_R, MappingState* st) {
+  if (!st->armed) {
+    if (s_R < p.threshold - press_band(p)) st->armed = 1;
+    return 0;
+  }
+  if (s_R >= p.threshold) {
+    st->armed = 0;
+    st->presses++;
+    return 1;
+  }
+  return 0;
+}
+}  // namespace detail
+
+inline double mapping_update(const MappingParams& p, double s_R, MappingState* st) {
+  switch (p.kind) {
+    case kBinary:
+      if (p.latching) {
+        if (detail::press_edge(p, s_R, st)) st->on = !st->on;
+      } else {
+        st->on = s_R >= p.threshold ? 1 : 0;
+      }
+      st->s_E = st->on ? p.e_hi : p.e_lo;
+      break;
+    case kStep:
+      if (!st->on && s_R > p.threshold) st->on = 1;
+      else if (st->on && s_R < p.threshold - p.hysteresis) st->on = 0;
+      st->s_E = st->on ? p.e_hi : p.e_lo;
+      break;
+    case kLinear:
+      st->s_E = clamp_between(p.offset + p.gain * (s_R - p.r_lo), p.e_lo, p.e_hi);
+      break;
+    case kCumulative:
+      if (detail::press_edge(p, s_R, st)) st->s_E = clamp_between(st->s_E + p.delta, p.e_lo, p.e_hi);
+      break;
+    default:
+      break;
+  }
+  return st->s_E;
+}
+
+inline double droplet_rate(const EffectParams& p, double flow_l_per_min) {
+  if (p.droplet_volume_l <= 0 || flow_l_per_min <= 0) return 0;
+  return flow_l_per_min / 60.0 / p.droplet_volume_l;
+}
+
+inline int effect_step(const EffectParams& p, double s_E, double dt, EffectState* st) {
+  switch (p.kind) {
+    case kTemperature: {
+      // Exact discretisation of dT/dt = (s_E - T) / tau: stable for any dt.
+      if (dt != st->lag_dt) {
+        const double tau = p.time_constant > 0 ? p.time_constant : 1e-9;
+        st->lag_factor = 1.0 - std::exp(-dt / tau);
+        st->lag_dt = dt;
+      }
+      st->output += (s_E - st->output) * st->lag_factor;
+      return 0;
+    }
+    case kFluid: {
+      st->output = s_E;
+      const double want = droplet_rate(p, s_E) * dt + st->emit_remainder;
+      // The epsilon keeps a droplet from being lost to rounding when the
+      // accumulated remainder lands a hair below a whole number.
+      const double n = std::floor(want + 1e-9);
+      st->emit_remainder = want - n > 0 ? want - n : 0;
+      st->emitted += static_cast<long>(n);
+      return static_cast<int>(n);
+    }
+    default:
+      st->output = s_E;
+      return 0;
+  }
+}
+
+inline int function_step(const FunctionParams& p, double s_R, double dt, FunctionState* st) {
+  const double s_E = mapping_update(p.mapping, s_R, &st->mapping);
+  return effect_step(p.effect, s_E, dt, &st->effect);
+}
 
 }  // namespace efc_rt
 
