@@ -1,5 +1,6 @@
 #include "compiler/diagnostics.h"
 
+#include <algorithm>
 #include <ostream>
 #include <vector>
 
@@ -86,20 +87,30 @@ std::string format_json(const Diagnostic& d) {
 }
 
 void Diagnostics::attach_source_lines(const std::string& file, std::string_view text) {
+  auto wants_line = [&](const Diagnostic& d) {
+    return d.file == file && d.line > 0 && d.source_line.empty();
+  };
+  // Nothing to do on the common path (no diagnostics): skip indexing the text.
+  if (std::none_of(items_.begin(), items_.end(), wants_line)) return;
   // Line start offsets, computed once.
   std::vector<size_t> starts{0};
   for (size_t i = 0; i < text.size(); ++i)
     if (text[i] == '\n') starts.push_back(i + 1);
   for (auto& d : items_) {
-    if (d.file != file || d.line <= 0 || static_cast<size_t>(d.line) > starts.size() ||
-        !d.source_line.empty())
-      continue;
+    if (!wants_line(d) || static_cast<size_t>(d.line) > starts.size()) continue;
     size_t begin = starts[d.line - 1];
     size_t end = text.find('\n', begin);
     std::string line(text.substr(begin, end == std::string_view::npos ? text.size() - begin
                                                                       : end - begin));
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.size() > 200) continue;  // a minified file: the caret would not help
+    // Control characters would garble the terminal (a binary file): no line.
+    // (Other bytes are shown as they are: a Latin-1 line still helps.)
+    const bool control = std::any_of(line.begin(), line.end(), [](char ch) {
+      const unsigned char u = static_cast<unsigned char>(ch);
+      return (u < 0x20 && u != '\t') || u == 0x7f;
+    });
+    if (control) continue;
     d.source_line = std::move(line);
   }
 }

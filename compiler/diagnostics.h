@@ -21,7 +21,7 @@ struct Diagnostic {
   std::string message;
   std::string hint;     // optional
   // The source line the position points into, shown under the message with a
-  // caret (set for .efc files; see Diagnostics::attach_source_lines).
+  // caret (see Diagnostics::attach_source_lines).
   std::string source_line;
 };
 
@@ -38,7 +38,9 @@ class Diagnostics {
   size_t warning_count() const;
   const std::vector<Diagnostic>& items() const { return items_; }
   void clear() { items_.clear(); }
-  // Sets source_line on every diagnostic in `file` with a line, from `text`.
+  // Sets source_line on every diagnostic in `file` with a line, from `text`
+  // (the spec's text). Lines over 200 bytes (minified) or with control
+  // characters (a binary file) are left out.
   void attach_source_lines(const std::string& file, std::string_view text);
 
   // Text (compiler style) or JSON lines.

@@ -238,3 +238,29 @@ TEST(Cli, OnlyRenderingLoadsOSMesa) {
   EXPECT_NE(render.find("libOSMesa"), std::string::npos);
   EXPECT_TRUE(fs::exists(frames / "frame_00000.png"));
 }
+
+// Text diagnostics on a JSON spec quote the line and put a caret under the
+// column, as they do for .efc files; a binary file gets no quoted line.
+TEST(Cli, JsonDiagnosticsQuoteTheLineWithACaret) {
+  const Result r = efc("check " + q(kSource / "tests/specs/bad/axis_on_fixed.json"));
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  std::istringstream lines(r.err);
+  std::string first, quoted, caret;
+  std::getline(lines, first);
+  std::getline(lines, quoted);
+  std::getline(lines, caret);
+  EXPECT_NE(first.find(":8:59: error[E0211]"), std::string::npos) << r.err;
+  EXPECT_EQ(quoted.rfind("  8 | ", 0), 0u) << r.err;
+  EXPECT_NE(quoted.find("\"axis\": [0, 0, 1]"), std::string::npos) << r.err;
+  // The caret sits under column 59 of the quoted line.
+  ASSERT_EQ(caret.rfind("    | ", 0), 0u) << r.err;
+  EXPECT_EQ(caret.substr(6), std::string(58, ' ') + "^") << r.err;
+  EXPECT_EQ(quoted.substr(6 + 58, 9), "[0, 0, 1]") << r.err;  // the value it is about
+
+  const fs::path binary = scratch("binary.json");
+  std::ofstream(binary, std::ios::binary) << std::string("\x01\x02\xff\xfe{\x03\n", 7);
+  const Result b = efc("check " + q(binary));
+  EXPECT_EQ(b.exit_code, 1) << b.err;
+  EXPECT_NE(b.err.find("error[E0004]"), std::string::npos) << b.err;
+  EXPECT_EQ(b.err.find(" | "), std::string::npos) << b.err;
+}

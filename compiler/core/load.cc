@@ -16,9 +16,9 @@ std::optional<Object> load_spec(const std::string& path, const LoadOptions& opts
   std::optional<Object> obj = read_spec_file(path, read_opts, diags, &io, &text);
   if (io_error) *io_error = io;
   if (!obj) return std::nullopt;
-  // The checks' diagnostics point into a .efc file too: show its lines.
+  // The checks' diagnostics point into the spec too: show its lines.
   auto finish = [&](bool ok) -> std::optional<Object> {
-    if (is_dsl_path(path)) diags.attach_source_lines(path, text);
+    diags.attach_source_lines(path, text);
     if (!ok) return std::nullopt;
     return std::move(obj);  // the Object, its positions included, is not copied
   };

@@ -70,11 +70,14 @@ std::string folder_of(const std::string& path) {
 std::optional<Object> read_json_text(std::string_view text, const std::string& file,
                                      const std::string& base_dir, const ReadOptions& opts,
                                      Diagnostics& diags) {
-  Diagnostics local;
+  Diagnostics local, built;
   auto parsed = frontend::parse_positioned(text, file, opts.max_depth, local);
-  if (!parsed) return build_from(nullptr, {}, local, file, base_dir, opts, diags);
-  return build_from(&parsed->value, std::move(parsed->positions), local, file, base_dir, opts,
-                    diags);
+  auto obj = parsed ? build_from(&parsed->value, std::move(parsed->positions), local, file,
+                                 base_dir, opts, built)
+                    : build_from(nullptr, {}, local, file, base_dir, opts, built);
+  built.attach_source_lines(file, text);
+  for (const auto& d : built.items()) diags.add(d);
+  return obj;
 }
 
 bool is_dsl_path(const std::string& path) {
@@ -110,7 +113,7 @@ std::optional<SpecDocument> read_spec_document(const std::string& path, const Re
   auto obj = parsed ? build_from(&parsed->value, parsed->positions, local, path, folder_of(path),
                                  opts, built)
                     : build_from(nullptr, {}, local, path, folder_of(path), opts, built);
-  if (is_dsl_path(path)) built.attach_source_lines(path, *text);
+  built.attach_source_lines(path, *text);
   for (const auto& d : built.items()) diags.add(d);
   if (!obj) return std::nullopt;
   doc.value = std::move(parsed->value);
