@@ -75,6 +75,16 @@ def table(header, rows):
         print(line(r))
 
 
+def repetitions(results):
+    """'median of N repetitions' as the JSON says (1 for a single run)."""
+    for slot in results.values():
+        entry = slot.get("median")
+        if entry:
+            n = int(entry.get("repetitions", 1) or 1)
+            return "median of %d repetitions" % n if n > 1 else "a single run"
+    return "no runs"
+
+
 def verdict(what, ratios, target):
     """One line: worst and median of (ratio, spec) pairs against the target."""
     worst = max(ratios)
@@ -121,8 +131,8 @@ def main(argv):
         ctx.get("host_name", "?"), ctx.get("num_cpus", "?"),
         " ".join("%.1f" % x for x in ctx.get("load_avg", [])) or "?"))
     print()
-    print("Compile (%s time, median of 5 repetitions, ms; ratio = compile / MuJoCo load)" % (
-        "wall" if TIME_FIELD == "real_time" else "CPU"))
+    print("Compile (%s time, %s, ms; ratio = compile / MuJoCo load)" % (
+        "wall" if TIME_FIELD == "real_time" else "CPU", repetitions(comp)))
     rows, ratios, mem_ratios = [], [], []
     for spec in specs_in(comp, {"check", "compile_mujoco", "generate_mujoco", "mujoco_load"}):
         g = {k: comp.get((k, spec))
@@ -174,7 +184,7 @@ def main(argv):
         if not specs:
             continue
         print()
-        print(title + " (median of 5; steps/s of mj_step alone vs the harness step:")
+        print(title + " (%s; steps/s of mj_step alone vs the harness step:" % repetitions(play))
         print("  recorded inputs + Controller::step + mj_step; overhead = end to end; template % ="
               " templates timed in the loop / raw)")
         rows, worst, worst_e2e = [], None, None
