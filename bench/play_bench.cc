@@ -262,8 +262,6 @@ void BM_play(benchmark::State& state, const efc_bench::BenchSpec& spec) {
     }
     return std::chrono::duration<double>(Clock::now() - t0).count();
   };
-  auto raw_episode = [&]() { return episode(false); };
-  auto templates_episode = [&]() { return episode(true); };
 
   // Per iteration: raw, templates, templates, raw (ABBA, so a drift in machine
   // speed during the iteration and the order of episodes cancel out), then a
@@ -271,10 +269,10 @@ void BM_play(benchmark::State& state, const efc_bench::BenchSpec& spec) {
   std::vector<double> raw_s, tmpl_s, inner_s, overhead, share;
   try {
     for (auto _ : state) {
-      const double raw_a = raw_episode();
-      const double tmpl_a = templates_episode();
-      const double tmpl_b = templates_episode();
-      const double raw_b = raw_episode();
+      const double raw_a = episode(false);
+      const double tmpl_a = episode(true);
+      const double tmpl_b = episode(true);
+      const double raw_b = episode(false);
       const double raw = 0.5 * (raw_a + raw_b), tmpl = 0.5 * (tmpl_a + tmpl_b);
 
       sim.reset(true);

@@ -67,17 +67,31 @@ std::string folder_of(const std::string& path) {
 
 }  // namespace
 
-std::optional<Object> read_json_text(std::string_view text, const std::string& file,
-                                     const std::string& base_dir, const ReadOptions& opts,
-                                     Diagnostics& diags) {
-  Diagnostics local, built;
-  auto parsed = frontend::parse_positioned(text, file, opts.max_depth, local);
+namespace {
+
+// A parse's result (nullopt: its errors are in `local`) -> the IR, with every
+// diagnostic in file order and quoting its source line.
+std::optional<Object> read_parsed(std::optional<frontend::PositionedJson> parsed,
+                                  Diagnostics& local, std::string_view text,
+                                  const std::string& file, const std::string& base_dir,
+                                  const ReadOptions& opts, Diagnostics& diags) {
+  Diagnostics built;
   auto obj = parsed ? build_from(&parsed->value, std::move(parsed->positions), local, file,
                                  base_dir, opts, built)
                     : build_from(nullptr, {}, local, file, base_dir, opts, built);
   built.attach_source_lines(file, text);
   for (const auto& d : built.items()) diags.add(d);
   return obj;
+}
+
+}  // namespace
+
+std::optional<Object> read_json_text(std::string_view text, const std::string& file,
+                                     const std::string& base_dir, const ReadOptions& opts,
+                                     Diagnostics& diags) {
+  Diagnostics local;
+  return read_parsed(frontend::parse_positioned(text, file, opts.max_depth, local), local, text,
+                     file, base_dir, opts, diags);
 }
 
 bool is_dsl_path(const std::string& path) {
@@ -87,15 +101,9 @@ bool is_dsl_path(const std::string& path) {
 std::optional<Object> read_spec_text(std::string_view text, const std::string& file,
                                      const std::string& base_dir, const ReadOptions& opts,
                                      Diagnostics& diags) {
-  if (!is_dsl_path(file)) return read_json_text(text, file, base_dir, opts, diags);
-  Diagnostics local, built;
-  auto parsed = parse_any(text, file, opts, local, nullptr);
-  auto obj = parsed ? build_from(&parsed->value, std::move(parsed->positions), local, file,
-                                 base_dir, opts, built)
-                    : build_from(nullptr, {}, local, file, base_dir, opts, built);
-  built.attach_source_lines(file, text);
-  for (const auto& d : built.items()) diags.add(d);
-  return obj;
+  Diagnostics local;
+  return read_parsed(parse_any(text, file, opts, local, nullptr), local, text, file, base_dir,
+                     opts, diags);
 }
 
 std::optional<SpecDocument> read_spec_document(const std::string& path, const ReadOptions& opts,
