@@ -2,7 +2,7 @@
 
 namespace efc {
 
-// Each target defines its factory next to its emitter.
+// Each target defines its factory next to its generator, in its own library.
 const Backend* mujoco_backend();
 const Backend* urdf_backend();
 const Backend* bullet_backend();
@@ -13,8 +13,11 @@ const std::vector<const Backend*>& all_backends() {
 }
 
 const Backend* find_backend(const std::string& name) {
-  for (const Backend* b : all_backends())
+  for (const Backend* b : all_backends()) {
     if (name == b->name()) return b;
+    for (const std::string& alias : b->aliases())
+      if (name == alias) return b;
+  }
   return nullptr;
 }
 

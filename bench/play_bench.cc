@@ -46,6 +46,7 @@
 #include <string>
 #include <vector>
 
+#include "backends/common/lowering.h"
 #include "backends/mujoco/mujoco_backend.h"
 #include "bench/bench_common.h"
 #include "harness/mujoco_errors.h"
@@ -121,7 +122,7 @@ struct Sim {
       return false;
     }
     reset(true);
-    for (int pi : efc::profile_driven_receptors(obj)) {
+    for (int pi : efc::lowering::profile_driven_receptors(obj)) {
       const efc::Part& p = obj.parts[pi];
       Drive dr;
       dr.part = p.name;

@@ -10,6 +10,8 @@
 #include <memory>
 #include <set>
 
+#include "backends/common/lowering.h"
+#include "backends/common/naming.h"
 #include "backends/mujoco/mujoco_backend.h"
 #include "compiler/core/resolve.h"
 #include "harness/mujoco_errors.h"
@@ -74,21 +76,6 @@ bool write_frames_dir(const std::string& dir, Diagnostics& diags) {
 }
 
 }  // namespace
-
-std::vector<int> profile_driven_receptors(const Object& obj) {
-  std::set<int> driven_by_function;
-  for (const Function& f : obj.functions)
-    if (f.effect.type == EffectType::Geometry) driven_by_function.insert(f.effector_index);
-  std::vector<int> out;
-  std::set<int> seen;
-  for (const Function& f : obj.functions) {
-    const int r = f.receptor_index;
-    if (driven_by_function.count(r) || seen.count(r)) continue;
-    seen.insert(r);
-    out.push_back(r);
-  }
-  return out;
-}
 
 bool write_log_csv(const PlayLog& log, const std::string& path, std::string* error) {
   const std::string tmp = path + ".tmp";
@@ -169,11 +156,11 @@ int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog
 
   // The receptors the profile moves, through their efc_drive_<part> actuators.
   std::vector<Drive> drives;
-  for (int pi : profile_driven_receptors(obj)) {
+  for (int pi : lowering::profile_driven_receptors(obj)) {
     const Part& p = obj.parts[pi];
     Drive dr;
     dr.part = pi;
-    dr.actuator = mj_name2id(m, mjOBJ_ACTUATOR, ("efc_drive_" + p.name).c_str());
+    dr.actuator = mj_name2id(m, mjOBJ_ACTUATOR, naming::mjcf_receptor_drive(p.name).c_str());
     const int jid = mj_name2id(m, mjOBJ_JOINT, p.name.c_str());
     if (dr.actuator < 0 || jid < 0) {
       diags.error("E0901", obj.file, 0, 0, "", "compiled model has no drive for receptor '" + p.name + "'");

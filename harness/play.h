@@ -32,10 +32,6 @@ struct PlayLog {
   std::vector<std::string> mujoco_warnings;
 };
 
-// Receptor parts the profile drives: receptors of functions that are not the
-// effector of a geometry-effect function (those move as their function says).
-std::vector<int> profile_driven_receptors(const Object& obj);
-
 // Returns the CLI exit code: 0 ok, 1 the input is wrong (diagnostics say
 // why), 2 a file could not be written.
 int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog* log);

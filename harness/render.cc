@@ -7,6 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "backends/common/naming.h"
 #include "harness/osmesa_loader.h"
 
 namespace efc {
@@ -82,7 +83,7 @@ OffscreenRenderer::OffscreenRenderer(const mjModel* m, int width, int height) {
   width_ = std::min(width_, con_.offWidth);
   height_ = std::min(height_, con_.offHeight);
 
-  camera_id_ = mj_name2id(m, mjOBJ_CAMERA, "efc_camera");
+  camera_id_ = mj_name2id(m, mjOBJ_CAMERA, naming::kMjcfCamera);
   if (camera_id_ >= 0) {
     cam_.type = mjCAMERA_FIXED;
     cam_.fixedcamid = camera_id_;

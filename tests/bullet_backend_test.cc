@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "backends/backend.h"
+#include "backends/common/lowering.h"
 #include "backends/mujoco/mujoco_backend.h"
 #include "compiler/core/load.h"
 #include "compiler/core/resolve.h"
@@ -207,7 +208,7 @@ TEST_P(BulletExample, CsvPassesTheHarnessChecksUnderEveryProfile) {
   std::vector<std::string> want_header{"t"};
   for (const auto& row : build_bindings(*obj))
     for (const char* s : {".s_R", ".s_E", ".measured"}) want_header.push_back(std::string(row.name) + s);
-  const std::vector<int> driven = profile_driven_receptors(*obj);
+  const std::vector<int> driven = efc::lowering::profile_driven_receptors(*obj);
 
   for (const char* prof : kProfiles) {
     SCOPED_TRACE(prof);

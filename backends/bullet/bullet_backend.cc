@@ -1,30 +1,18 @@
-// Backend::emit for Bullet: the model (bullet_model.cc), the program text
-// (bullet_program.cc, bullet_engine.cc) and the copied runtime sources.
+// Backend::generate for Bullet: the model (bullet_model.cc), the program text
+// (bullet_program.cc around the embedded efc_bullet_engine.h) and the copied
+// runtime sources.
 #include "backends/bullet/bullet_backend.h"
-
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sys/stat.h>
 
 #include "backends/backend.h"
 #include "backends/bullet/bullet_model.h"
 #include "backends/bullet/bullet_program.h"
-#include "backends/bullet/embedded_profile.h"
-#include "backends/mujoco/embedded_runtime.h"
+#include "backends/common/embedded.h"
+#include "backends/common/naming.h"
+#include "backends/common/report.h"
 
 namespace efc {
 
 namespace {
-
-bool put(const std::string& path, const std::string& text, Diagnostics& diags) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  out.close();
-  if (out) return true;
-  diags.error("E0900", path, 0, 0, "", "cannot write '" + path + "': " + std::strerror(errno));
-  return false;
-}
 
 class BulletBackend : public Backend {
  public:
@@ -32,37 +20,22 @@ class BulletBackend : public Backend {
   const char* description() const override {
     return "Bullet 3 btMultiBody program (C++, CMake) over the efc runtime, same CSV as efc play";
   }
-  bool emit(const Object& obj, const std::string& dir, Diagnostics& diags) const override {
-    return write_bullet_target(obj, dir, diags);
+  bool generate(const Object& obj, Diagnostics& diags, std::vector<OutputFile>* files) const override {
+    return generate_bullet_target(obj, diags, files);
   }
 };
 
 }  // namespace
 
-bool write_bullet_target(const Object& obj, const std::string& dir, Diagnostics& diags) {
+bool generate_bullet_target(const Object& obj, Diagnostics& diags, std::vector<OutputFile>* files) {
   const bullet::Model model = bullet::make_model(obj, 0.002);
-  for (size_t i = 0; i < model.warnings.size(); ++i) {
-    const std::string& ptr = model.warning_pointers[i];
-    const auto at = obj.positions.find(ptr);
-    const int line = at != obj.positions.end() ? at->second.first : 0;
-    const int col = at != obj.positions.end() ? at->second.second : 0;
-    diags.warning("W0900", obj.file, line, col, ptr, model.warnings[i]);
-  }
-  const std::string rt = dir + "/efc_runtime";
-  if (::mkdir(rt.c_str(), 0777) != 0 && errno != EEXIST) {
-    diags.error("E0900", rt, 0, 0, "", "cannot create '" + rt + "': " + std::strerror(errno));
-    return false;
-  }
-  for (const EmbeddedFile& f : embedded_runtime_files()) {
-    const std::string p = f.path;
-    if (p != "efc_runtime/efc_runtime.h" && p != "efc_runtime/efc_runtime.cc") continue;
-    if (!put(dir + "/" + p, f.text, diags)) return false;
-  }
-  for (const EmbeddedFile& f : embedded_profile_files())
-    if (!put(dir + "/" + f.path, f.text, diags)) return false;
-  return put(dir + "/" + obj.name + "_bullet.cc", bullet::emit_program(obj, model), diags) &&
-         put(dir + "/CMakeLists.txt", bullet::emit_cmake(obj), diags) &&
-         put(dir + "/README.md", bullet::emit_readme(obj, model), diags);
+  for (size_t i = 0; i < model.warnings.size(); ++i)
+    warn_target(diags, obj, spec_location(obj, model.warning_pointers[i]), model.warnings[i]);
+  for (const EmbeddedFile& f : embedded_runtime_sources()) files->push_back({f.path, f.text});
+  files->push_back({naming::bullet_program(obj) + ".cc", bullet::emit_program(obj, model)});
+  files->push_back({"CMakeLists.txt", bullet::emit_cmake(obj)});
+  files->push_back({"README.md", bullet::emit_readme(obj, model)});
+  return true;
 }
 
 const Backend* bullet_backend() {

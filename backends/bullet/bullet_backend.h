@@ -3,15 +3,16 @@
 // (runtime + receptor profiles, copied), CMakeLists.txt and README.md.
 #pragma once
 
-#include <string>
+#include <vector>
 
+#include "backends/common/output_file.h"
 #include "compiler/diagnostics.h"
 #include "compiler/ir.h"
 
 namespace efc {
 
-// Writes the Bullet target into `dir` (existing, empty). Warnings (W0900)
-// name what Bullet cannot represent. Returns false after adding an error.
-bool write_bullet_target(const Object& obj, const std::string& dir, Diagnostics& diags);
+// The target folder in memory. Warnings (W0900) name what Bullet cannot
+// represent. Returns false after adding an error.
+bool generate_bullet_target(const Object& obj, Diagnostics& diags, std::vector<OutputFile>* files);
 
 }  // namespace efc

@@ -2,13 +2,10 @@
 #include "backends/bullet/bullet_model.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <set>
 
-#include "backends/mujoco/mjcf_internal.h"
-#include "backends/mujoco/mjcf_plan.h"
-#include "backends/mujoco/mujoco_backend.h"
+#include "backends/common/lowering.h"
 #include "compiler/geometry/geometry.h"
 
 namespace efc {
@@ -88,15 +85,6 @@ void add_shapes(const Geometry& g, int link, const Vec3& com, const Mat3& frame,
 
 }  // namespace
 
-std::string num(double v) {
-  if (v == 0) return "0";
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  std::string s(buf, res.ptr);
-  // A C++ literal: make sure it reads as a double ("1e-05" and "3" are fine).
-  return s;
-}
-
 void principal_axes(const Mat3& inertia, Vec3* moments, Mat3* axes) {
   Mat3 a = inertia, v = identity();
   const double scale = std::fabs(a[0][0]) + std::fabs(a[1][1]) + std::fabs(a[2][2]);
@@ -166,7 +154,7 @@ Quat to_quat(const Mat3& m) {
 Model make_model(const Object& obj, double timestep) {
   Model M;
   const size_t n = obj.parts.size();
-  const mjcf::Layout L = mjcf::make_layout(obj);
+  const lowering::Layout L = lowering::make_layout(obj);
   M.part_link.assign(n, -1);
 
   // Links in breadth-first order from the root: parents before children.
@@ -180,16 +168,9 @@ Model make_model(const Object& obj, double timestep) {
   }
   for (size_t i = 0; i < order.size(); ++i) M.part_link[order[i]] = static_cast<int>(i);
 
-  // Drives: geometry effects take the MuJoCo target's gains.
-  MjcfOptions mo;
-  mo.timestep = timestep;
-  const mjcf::Plan plan = mjcf::make_plan(obj, mo);
-  std::set<int> geometry_effectors;
-  for (const Function& f : obj.functions)
-    if (f.effect.type == EffectType::Geometry) geometry_effectors.insert(f.effector_index);
-  std::set<int> kinematic;
-  for (const Function& f : obj.functions)
-    if (!geometry_effectors.count(f.receptor_index)) kinematic.insert(f.receptor_index);
+  // Receptors the profile moves are prescribed kinematically.
+  const std::vector<int> profile_driven = lowering::profile_driven_receptors(obj);
+  const std::set<int> kinematic(profile_driven.begin(), profile_driven.end());
 
   auto frame_of = [&](const Part& p, Vec3* moments, Mat3* frame) {
     principal_axes(p.mass_props.inertia, moments, frame);
@@ -239,14 +220,14 @@ Model make_model(const Object& obj, double timestep) {
       k.spring_rest = j.spring->rest;
     }
     if (j.movable()) {
-      const mjcf::DriveGains g =
-          mjcf::drive_gains(obj, L, pi, j.lo, j.hi, 0, 0, timestep, nullptr, nullptr);
+      const lowering::DriveGains g =
+          lowering::drive_gains(obj, L, pi, j.lo, j.hi, 0, 0, timestep, nullptr, nullptr);
       k.joint_inertia = g.inertia - g.armature;
       k.kinematic = kinematic.count(pi) > 0;
+      // Geometry effects take the common layer's gains (as the MuJoCo target).
       for (const Function& f : obj.functions)
-        if (f.effect.type == EffectType::Geometry && f.effector_index == pi) {
-          for (const mjcf::Drive& d : plan.drives)
-            if (d.name == "efc_" + f.name + "_drive") k.kp = d.kp;
+        if (f.effect.type == EffectType::Geometry && lowering::effector_part(obj, f) == pi) {
+          k.kp = lowering::geometry_drive(obj, L, f, timestep).kp;
           if (f.effect.damping) k.kv_explicit = *f.effect.damping;
         }
     }

@@ -72,8 +72,6 @@ Model make_model(const Object& obj, double timestep);
 void principal_axes(const Mat3& inertia, Vec3* moments, Mat3* axes);
 Quat to_quat(const Mat3& r);
 
-// Shortest round-trip text of a double.
-std::string num(double v);
 
 }  // namespace bullet
 }  // namespace efc

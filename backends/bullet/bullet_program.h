@@ -1,6 +1,7 @@
 // The generated Bullet program: <name>_bullet.cc = the engine text
-// (bullet_engine.cc) + the object as tables + main(); and its CMakeLists.txt
-// and README.md.
+// (efc_bullet_engine.h, embedded at build time: the fixed part, compiled only
+// in the output folder, where it includes efc_runtime/) + the object as tables
+// + main(); and its CMakeLists.txt and README.md.
 #pragma once
 
 #include <string>
@@ -11,7 +12,6 @@
 namespace efc {
 namespace bullet {
 
-const char* engine_prelude();
 std::string emit_program(const Object& obj, const Model& model);
 std::string emit_cmake(const Object& obj);
 std::string emit_readme(const Object& obj, const Model& model);

@@ -39,5 +39,5 @@ foreach(f ${sources})
 endforeach()
 string(APPEND content "#endif  // EFC_RUNTIME_IMPLEMENTATION\n")
 
-include(${CMAKE_CURRENT_LIST_DIR}/write_if_changed.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../common/write_if_changed.cmake)
 write_if_changed("${OUT}" "${content}")

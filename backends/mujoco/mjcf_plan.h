@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "backends/common/lowering.h"
 #include "backends/mujoco/mjcf_internal.h"
 #include "backends/mujoco/mujoco_backend.h"
 
@@ -32,29 +33,28 @@ struct Drive {
   double ctrl_lo = 0, ctrl_hi = 0;
 };
 
+// A warning the target owes the user, located at a spec field.
+struct Warning {
+  SourceLoc loc;
+  std::string message;
+};
+
 struct Plan {
-  Layout layout;
+  lowering::Layout layout;  // every body frame: lowering's part frames
   Vec3 bbox_min{0, 0, 0}, bbox_max{0, 0, 0};  // the whole object
   std::vector<MeshAsset> meshes;
   std::vector<Pool> pools;
   int droplet_total = 0;
   std::vector<double> armature;  // per part
   std::vector<Drive> drives;     // geometry effects first, then receptor drives
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
 };
 
 Plan make_plan(const Object& obj, const MjcfOptions& options);
 
-std::string mesh_name(const std::string& part, int index);
-// The effect's point in the object frame (resolve() fills it; the fallback
-// is the effector's bounding-box centre) and its unit direction.
-Vec3 effect_point(const Object& obj, const Function& f, int effector);
-Vec3 effect_direction(const Effect& e);
 // Where droplet number `serial` (over all pools) waits: a spaced grid at
 // z = +50 m, far from the object and from each other.
 Vec3 park_position(int serial, double radius);
-
-bool make_dirs(const std::string& path, std::string* error);
 
 }  // namespace mjcf
 }  // namespace efc

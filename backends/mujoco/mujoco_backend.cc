@@ -4,13 +4,15 @@
 //   CMakeLists.txt, README.md.
 // The MJCF itself is mjcf_writer.cc, the table bindings_table.cc, the
 // callbacks callbacks_emitter.cc.
-#include "backends/output_file.h"
 #include "backends/mujoco/mujoco_backend.h"
 
 #include <sstream>
 
 #include "backends/backend.h"
-#include "backends/mujoco/embedded_runtime.h"
+#include "backends/common/embedded.h"
+#include "backends/common/naming.h"
+#include "backends/common/output_file.h"
+#include "backends/common/text.h"
 #include "backends/mujoco/mjcf_internal.h"
 #include "backends/mujoco/mjcf_plan.h"
 
@@ -44,7 +46,7 @@ std::string output_cmake(const Object& obj) {
 std::string output_readme(const Object& obj, const mjcf::Plan& plan,
                           const std::vector<efc_mj::FunctionBinding>& rows) {
   const std::string& n = obj.name;
-  const std::string p = "efc_" + n;
+  const std::string p = naming::callbacks_prefix(obj);
   std::ostringstream o;
   o << "# " << n << " for MuJoCo 2.2\n\n";
   if (obj.description) o << *obj.description << "\n\n";
@@ -84,8 +86,8 @@ std::string output_readme(const Object& obj, const mjcf::Plan& plan,
     const auto& b = rows[i];
     const int k = b.params.effect.kind;
     o << "| " << i << " | " << b.name << " | " << b.receptor_joint << " | " << b.effector_body << " | "
-      << (k >= 0 && k < 5 ? kinds[k] : "?") << " [" << mjcf::num(b.params.effect.e_lo) << ", "
-      << mjcf::num(b.params.effect.e_hi) << "] |\n";
+      << (k >= 0 && k < 5 ? kinds[k] : "?") << " [" << text::number(b.params.effect.e_lo) << ", "
+      << text::number(b.params.effect.e_hi) << "] |\n";
   }
   o << "\n## How effects are realised\n\n"
     << "- geometry: position actuator `efc_<fn>_drive` (ctrl = s_E) plus velocity actuator "
@@ -94,16 +96,16 @@ std::string output_readme(const Object& obj, const mjcf::Plan& plan,
     << "friction; kv critically damps. Where kp is too stiff for the part at the time step, "
     << "joint armature is added. measured = joint position.\n"
     << "- illumination: light `efc_<fn>_light`, diffuse = colour * lumens / "
-    << mjcf::num(efc_mj::kLumensPerDiffuse) << " (written into the model). measured = lumens read "
+    << text::number(efc_mj::kLumensPerDiffuse) << " (written into the model). measured = lumens read "
     << "back from the light.\n"
     << "- temperature: first-order lag; the effector's geoms blend towards red-hot, fully at "
-    << "max(e_hi, " << mjcf::num(efc_mj::kGlowFullC) << " C). measured = the lagged temperature.\n"
+    << "max(e_hi, " << text::number(efc_mj::kGlowFullC) << " C). measured = the lagged temperature.\n"
     << "- fluid: a pool of free sphere bodies `efc_<fn>_drop<i>` (water density) launched from "
-    << "site `efc_<fn>_point` along its z axis; pool = peak flow x " << mjcf::num(efc_mj::kDropletLifetime)
+    << "site `efc_<fn>_point` along its z axis; pool = peak flow x " << text::number(efc_mj::kDropletLifetime)
     << " s lifetime, between 8 and 200 droplets (fewer when the 1000-number keyframe of MuJoCo 2.2 "
     << "cannot hold them all), oldest recycled first; unused droplets wait at "
     << "z = +50 m. measured = litres/min of droplets spawned in the last "
-    << mjcf::num(efc_mj::kFlowWindow) << " s.\n"
+    << text::number(efc_mj::kFlowWindow) << " s.\n"
     << "- airflow: every free body inside the cone of site `efc_<fn>_point` gets a drag force "
     << "(0.5 rho Cd A v^2) along the outlet axis; speed falls linearly to 0 at `reach`. measured "
     << "= speed at the outlet.\n\n"
@@ -123,9 +125,8 @@ class MujocoBackend : public Backend {
   const char* description() const override {
     return "MuJoCo 2.2 MJCF + meshes + generated mjcb_control callbacks (self-contained)";
   }
-  bool emit(const Object& obj, const std::string& dir, Diagnostics& diags) const override {
-    std::vector<OutputFile> files;
-    return generate_mujoco_target(obj, diags, &files) && write_output_files(dir, files, diags);
+  bool generate(const Object& obj, Diagnostics& diags, std::vector<OutputFile>* files) const override {
+    return generate_mujoco_target(obj, diags, files);
   }
 };
 
@@ -135,9 +136,9 @@ bool generate_mujoco_target(const Object& obj, Diagnostics& diags, std::vector<O
   const MjcfOptions options;
   mjcf::Plan plan = mjcf::make_plan(obj, options);
   if (!generate_model_files(obj, options, &plan, diags, files)) return false;
-  for (const EmbeddedFile& f : embedded_mujoco_runtime_files()) files->push_back({f.path, f.text});
-  files->push_back({obj.name + "_callbacks.cc", emit_callbacks(obj)});
-  files->push_back({obj.name + "_callbacks.h", callbacks_header(obj)});
+  for (const EmbeddedFile& f : embedded_mujoco_runtime()) files->push_back({f.path, f.text});
+  files->push_back({naming::callbacks_source(obj), emit_callbacks(obj)});
+  files->push_back({naming::callbacks_header(obj), callbacks_header(obj)});
   files->push_back({"CMakeLists.txt", output_cmake(obj)});
   files->push_back({"README.md", output_readme(obj, plan, build_bindings(obj))});
   return true;

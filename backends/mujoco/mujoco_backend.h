@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "backends/output_file.h"
+#include "backends/common/output_file.h"
 #include "compiler/diagnostics.h"
 #include "compiler/ir.h"
 #include "runtime/mujoco/efc_mujoco.h"

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "backends/common/output_file.h"
 #include "compiler/diagnostics.h"
 #include "compiler/ir.h"
 
@@ -85,22 +86,20 @@ Plan make_plan(const Object& obj);
 std::string write_urdf(const Object& obj, const Plan& plan);
 std::string write_sidecar(const Object& obj, const Plan& plan);
 
-std::string urdf_file_name(const Object& obj);     // <name>.urdf
-std::string sidecar_file_name(const Object& obj);  // <name>.functions.json
-std::string spec_file_name(const Object& obj);     // the spec's file name, no folder
+std::string spec_file_name(const Object& obj);  // the spec's file name, no folder
 
-// Text helpers (urdf_text.cc).
-std::string num(double v);  // shortest text that reads back exactly
-std::string vec(const Vec3& v);
-std::string comment_text(const std::string& s);  // safe inside <!-- -->
-Vec3 matrix_to_rpy(const Mat3& R);               // inverse of rpy_to_matrix
+Vec3 matrix_to_rpy(const Mat3& R);  // inverse of rpy_to_matrix (urdf_text.cc)
 
 }  // namespace urdf
 
-// Writes <dir>/<name>.urdf, <dir>/meshes/*.stl, <dir>/<name>.functions.json
-// and <dir>/README.md, adding W0900 warnings for what URDF cannot express.
-// Returns false after adding an E0900 error (I/O).
-bool write_urdf_model(const Object& obj, const std::string& dir, Diagnostics& diags,
-                      std::string* urdf_path = nullptr);
+// The URDF and its meshes (meshes/*.stl), what a simulator loads: the URDF
+// target and the Python targets carry the same bytes. No warnings (what URDF
+// cannot say is each target's business). False after adding an error.
+bool generate_urdf_model(const Object& obj, const urdf::Plan& plan, Diagnostics& diags,
+                         std::vector<OutputFile>* files);
+
+// The whole `--target urdf` folder: the model, <name>.functions.json and
+// README.md, with W0900 warnings for what URDF cannot express.
+bool generate_urdf_target(const Object& obj, Diagnostics& diags, std::vector<OutputFile>* files);
 
 }  // namespace efc

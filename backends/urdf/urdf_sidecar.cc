@@ -12,6 +12,8 @@
 
 #include "backends/urdf/urdf_backend.h"
 #include "compiler/core/ir_json.h"
+#include "backends/common/lowering.h"
+#include "backends/common/naming.h"
 #include "compiler/core/resolve.h"
 
 namespace efc {
@@ -38,7 +40,7 @@ std::string write_sidecar(const Object& obj, const Plan& plan) {
   json out = {{"format", "efc-urdf-functions"},
               {"version", 1},
               {"object", obj.name},
-              {"urdf", urdf_file_name(obj)},
+              {"urdf", naming::urdf_file(obj)},
               {"spec", spec_file_name(obj)},
               {"root_link", plan.link[plan.root]}};
   if (obj.description) out["description"] = *obj.description;
@@ -78,8 +80,8 @@ std::string write_sidecar(const Object& obj, const Plan& plan) {
   for (size_t fi = 0; fi < obj.functions.size(); ++fi) {
     const Function& f = obj.functions[fi];
     const json& fj = ir["functions"][fi];
-    const int rec = f.receptor_index >= 0 ? f.receptor_index : obj.find_part(f.receptor);
-    const int eff = f.effector_index >= 0 ? f.effector_index : obj.find_part(f.effector);
+    const int rec = lowering::receptor_part(obj, f);
+    const int eff = lowering::effector_part(obj, f);
     double lo = 0, hi = 0;
     receptor_range(obj, f, &lo, &hi);
     json j = {{"name", f.name}, {"receptor", end(plan, obj, rec)}, {"effector", end(plan, obj, eff)}};

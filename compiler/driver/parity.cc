@@ -35,6 +35,7 @@
 #include <sstream>
 
 #include "backends/bullet/bullet_backend.h"
+#include "backends/common/lowering.h"
 #include "compiler/core/load.h"
 #include "compiler/driver/commands.h"
 #include "harness/play.h"
@@ -121,7 +122,9 @@ std::string build_bullet(const Object& obj, Diagnostics& diags) {
   }
   const fs::path src = staging.path / "src";
   fs::create_directories(src);
-  if (!write_bullet_target(obj, src.string(), diags)) return "";
+  std::vector<OutputFile> files;
+  if (!generate_bullet_target(obj, diags, &files) || !write_output_files(src.string(), files, diags))
+    return "";
   const std::string key = obj.name + "-" + hash_tree(src);
   const fs::path dest = root / key;
   const fs::path exe = dest / "build" / (obj.name + "_bullet");
@@ -247,7 +250,7 @@ int cmd_parity(const std::string& spec, const std::string& profile_text, double 
     std::cerr << "efc parity: cannot create a temporary folder\n";
     return finish(2);
   }
-  const std::vector<int> driven = profile_driven_receptors(*obj);
+  const std::vector<int> driven = lowering::profile_driven_receptors(*obj);
   std::vector<size_t> driven_col;
   for (int part : driven) {
     size_t col = 0;

@@ -1,15 +1,4 @@
-// The fixed part of every generated <name>_bullet.cc: builds the btMultiBody
-// from the object tables that precede it, drives receptors through the
-// shared profiles, runs the shared runtime each step, writes the harness's
-// CSV. Kept as text (it is compiled only in the output folder); the tables
-// are written by bullet_program.cc.
-#include "backends/bullet/bullet_program.h"
-
-namespace efc {
-namespace bullet {
-
-const char* engine_prelude() {
-  return R"efc_engine(#include <btBulletDynamicsCommon.h>
+#include <btBulletDynamicsCommon.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
@@ -552,8 +541,3 @@ int run(const ModelSpec& m, int argc, char** argv) {
 }
 
 }  // namespace efcb
-)efc_engine";
-}
-
-}  // namespace bullet
-}  // namespace efc

@@ -1,4 +1,4 @@
-#include "backends/output_file.h"
+#include "backends/common/output_file.h"
 
 #include <cerrno>
 #include <cstring>
