@@ -352,6 +352,24 @@ const std::vector<CodeInfo>& all_codes() {
        "finite numbers with strictly increasing times; the line is the bad one.\n"
        "  t,handle\n  0,0\n  0.5,abc      <- not a number\n"
        "Fix: correct the row."},
+      {"E0910", "bad command-line argument",
+       "An option's value cannot be used: an unknown target, a --duration or --dt\n"
+       "out of bounds, an unknown profile, a file that is neither .json nor .efc, an\n"
+       "output path that is a file. Nothing was read or written. Exit code 2.\n"
+       "Fix: see `efc <command> --help`."},
+      {"E0911", "two specs have the same name",
+       "efc compile with several specs writes OUTDIR/<name>/<target>/; two specs whose\n"
+       "objects share a name would overwrite each other, so nothing is written.\n"
+       "Fix: rename one object (its \"name\"), or compile them into different folders."},
+      {"E0912", "parity does not hold",
+       "efc parity ran the MuJoCo harness and the compiled Bullet program over the same\n"
+       "receptor trajectory and a function's s_E or measured effector position differ\n"
+       "beyond the tolerance the table's header names.\n"
+       "Fix: the table shows which function and by how much; report it with the spec."},
+      {"E0913", "a generated program could not be built or run",
+       "efc parity builds the Bullet target with cmake and runs it; the build or the\n"
+       "run failed. The tail of its log is printed. Exit code 2.\n"
+       "Fix: install what the log says is missing (scripts/setup installs Bullet)."},
       // ---------------------------------------------------------------- warnings
       {"W0103", "mesh is not closed",
        "The mesh has holes or edges not shared by exactly two triangles, so its\n"
@@ -381,6 +399,11 @@ const std::vector<CodeInfo>& all_codes() {
        "hold:V asks for a position outside a receptor's joint range; the joint limit\n"
        "stops it there.\n"
        "Fix: hold inside the range, or use hold:lo / hold:hi."},
+      {"W0910", "efc convert cannot carry something over",
+       "JSON has no comments, so converting a commented .efc file to JSON drops them;\n"
+       "and mesh paths stay relative to the input's folder, so writing the output into\n"
+       "another folder breaks them.\n"
+       "Fix: keep the .efc file as the source, or move the meshes (or fix the paths)."},
       {"W0900", "backend cannot express a feature",
        "A target cannot express something in the spec (e.g. a spring, a light or a\n"
        "particle emitter); the warning names the feature and what was emitted\n"

@@ -20,6 +20,10 @@ void Diagnostics::warning(std::string code, std::string file, int line, int col,
                     std::move(pointer), std::move(message), std::move(hint), {}});
 }
 
+void Diagnostics::note(std::string message) {
+  items_.push_back({Severity::Note, {}, {}, 0, 0, {}, std::move(message), {}, {}});
+}
+
 bool Diagnostics::has_errors() const { return error_count() > 0; }
 
 size_t Diagnostics::error_count() const {
@@ -44,6 +48,7 @@ static const char* severity_name(Severity s) {
 }
 
 std::string format_text(const Diagnostic& d) {
+  if (d.severity == Severity::Note && d.file.empty() && d.code.empty()) return d.message + "\n";
   std::string out = d.file.empty() ? std::string("efc") : d.file;
   if (d.line > 0) {
     out += ":" + std::to_string(d.line);

@@ -33,6 +33,10 @@ class Diagnostics {
   void warning(std::string code, std::string file, int line, int col, std::string pointer,
                std::string message, std::string hint = {});
 
+  // A message of the program itself, about no spec: progress such as
+  // "compiled toaster -> out/mujoco". Text form prints just the message.
+  void note(std::string message);
+
   bool has_errors() const;
   size_t error_count() const;
   size_t warning_count() const;

@@ -239,7 +239,10 @@ int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog
       if (opts.progress && steps > 0) {
         const int percent = static_cast<int>(100 * k / steps);
         if (percent / 10 != last_percent / 10) {
-          std::fprintf(stderr, "play: %3d%% (t = %.2f s of %.2f s)\n", percent, t, opts.duration);
+          char line[96];
+          std::snprintf(line, sizeof line, "play: %3d%% (t = %.2f s of %.2f s)", percent, t,
+                        opts.duration);
+          opts.progress(line);
           last_percent = percent;
         }
       }

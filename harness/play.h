@@ -4,6 +4,7 @@
 // through the runtime's MuJoCo binding, and logs t, F.s_R, F.s_E, F.measured.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,9 @@ struct PlayOptions {
   double render_fps = 30;
   int render_width = 640, render_height = 480;
   std::string plot_path;  // "" = no SVG
-  bool progress = false;  // progress lines on stderr
+  // Called with a progress line every 10% of the run (none when empty): the
+  // CLI shows them on a terminal, through its diagnostics.
+  std::function<void(const std::string&)> progress;
 };
 
 struct PlayLog {

@@ -1,12 +1,9 @@
-// The efc command line (shared/spec/cli.md): check, compile, play, explain.
-// Exit codes: 0 success, 1 the input is wrong, 2 usage or I/O error.
-#include <CLI/CLI.hpp>
-
+// The efc program (shared/spec/cli.md). Exit codes: 0 success, 1 the input is
+// wrong, 2 usage or I/O error.
 #include <cstdio>
 #include <exception>
-#include <iostream>
 
-#include "compiler/driver/commands.h"
+#include "cli/commands.h"
 
 int main(int argc, char** argv) {
   try {

@@ -1,0 +1,130 @@
+// Argument parsing (CLI11) and dispatch to the commands (one file each).
+#include <CLI/CLI.hpp>
+
+#include <cstring>
+#include <iostream>
+
+#include "backends/backend.h"
+#include "cli/commands.h"
+
+namespace efc {
+namespace {
+
+void add_common(CLI::App* cmd, CommonOptions* common, std::string* format) {
+  cmd->add_option("--diagnostics-format", *format, "text (default) or json (one JSON object per line)")
+      ->check(CLI::IsMember({"text", "json"}));
+  cmd->add_flag("--allow-absolute-paths", common->allow_absolute_paths,
+                "let mesh paths be absolute (they may never leave the spec's folder otherwise)");
+}
+
+// Whether argv asks for JSON diagnostics, read before parsing: a command line
+// CLI11 rejects must still be reported as JSON when JSON was asked for.
+bool wants_json(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--diagnostics-format=json") == 0) return true;
+    if (std::strcmp(argv[i], "--diagnostics-format") == 0 && i + 1 < argc &&
+        std::strcmp(argv[i + 1], "json") == 0)
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"efc: a compiler for interactive 3D objects (function templates)", "efc"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "efc 0.1.0");
+
+  CommonOptions common;
+  std::string format = "text";
+
+  std::vector<std::string> specs;
+  bool dump_ir = false;
+  CLI::App* check = app.add_subcommand("check", "read and type-check specs; write nothing");
+  check->add_option("SPEC", specs, "spec files (.json or .efc)")->required();
+  check->add_flag("--dump-ir", dump_ir, "print the resolved IR (every default filled) as JSON");
+  add_common(check, &common, &format);
+
+  std::vector<std::string> targets;
+  std::string out_dir;
+  std::string target_help = "target: all";
+  for (const Backend* b : all_backends()) {
+    target_help += std::string(", ") + b->name();
+    for (const std::string& alias : b->aliases()) target_help += " (or " + alias + ")";
+  }
+  CLI::App* compile = app.add_subcommand("compile", "compile specs for simulators");
+  compile->add_option("SPEC", specs, "spec files (.json or .efc)")->required();
+  compile->add_option("--target,-t", targets, target_help)->required();
+  compile->add_option("-o,--output", out_dir, "output folder")->required();
+  add_common(compile, &common, &format);
+
+  PlayArgs play;
+  CLI::App* playc = app.add_subcommand("play", "play a spec in MuJoCo and log its templates");
+  playc->add_option("SPEC", play.spec, "spec file")->required();
+  playc->add_option("--profile", play.profile, "ramp, sweep, press:N, hold:V (lo/hi), csv:FILE")->required();
+  playc->add_option("--duration", play.duration, "seconds")->required();
+  playc->add_option("--dt", play.dt, "timestep in seconds (default 0.002)");
+  playc->add_option("--csv", play.csv, "write the log: t, F.s_R, F.s_E, F.measured");
+  playc->add_option("--render", play.render, "write PNG frames from an offscreen camera into DIR");
+  playc->add_option("--fps", play.fps, "frames per second for --render (default 30)");
+  playc->add_option("--plot", play.plot, "draw s_R, s_E and measured over time as SVG");
+  add_common(playc, &common, &format);
+
+  ParityArgs parity;
+  CLI::App* parityc = app.add_subcommand(
+      "parity", "run the MuJoCo harness and the compiled Bullet program; compare them per function");
+  parityc->add_option("SPEC", parity.spec, "spec file")->required();
+  parityc->add_option("--profile", parity.profile, "ramp, sweep, press:N, hold:V (lo/hi), csv:FILE")->required();
+  parityc->add_option("--duration", parity.duration, "seconds")->required();
+  parityc->add_option("--dt", parity.dt, "timestep in seconds (default 0.002)");
+  parityc->add_option("--bullet-exe", parity.bullet_exe, "a built <name>_bullet program (default: build one, cached)");
+  parityc->add_option("--csv-dir", parity.csv_dir, "also write mujoco.csv, bullet.csv, receptors.csv into DIR");
+  add_common(parityc, &common, &format);
+
+  std::vector<std::string> fmt_files;
+  bool fmt_check = false;
+  CLI::App* fmt = app.add_subcommand("fmt", "rewrite .efc (and .json) specs in canonical form");
+  fmt->add_option("FILE", fmt_files, "spec files (.efc or .json)")->required();
+  fmt->add_flag("--check", fmt_check, "change nothing; exit 1 if a file would change");
+  add_common(fmt, &common, &format);
+
+  std::string convert_in, convert_out;
+  CLI::App* convert = app.add_subcommand(
+      "convert", "convert a spec between JSON and the DSL (by extension: .json, .efc)");
+  convert->add_option("IN", convert_in, "input spec (.json or .efc)")->required();
+  convert->add_option("-o,--output", convert_out, "output file (.efc or .json)")->required();
+  add_common(convert, &common, &format);
+
+  std::string code;
+  bool list = false;
+  CLI::App* explain = app.add_subcommand("explain", "explain a diagnostic code (e.g. E0203)");
+  explain->add_option("CODE", code, "the code");
+  explain->add_flag("--list", list, "list every code");
+  add_common(explain, &common, &format);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0 || !wants_json(argc, argv)) {  // --help, --version, or text
+      const int rc = app.exit(e);
+      return rc == 0 ? kExitOk : kExitUsage;
+    }
+    common.json_diagnostics = true;
+    Report report(common);
+    return report.fail("E0910", e.what(), kExitUsage, "see efc --help");
+  }
+  common.json_diagnostics = format == "json";
+  Report report(common);
+
+  if (*check) return cmd_check(report, specs, dump_ir);
+  if (*compile) return cmd_compile(report, specs, targets, out_dir);
+  if (*playc) return cmd_play(report, play);
+  if (*parityc) return cmd_parity(report, parity);
+  if (*explain) return cmd_explain(report, code, list);
+  if (*fmt) return cmd_fmt(report, fmt_files, fmt_check);
+  if (*convert) return cmd_convert(report, convert_in, convert_out);
+  return kExitUsage;
+}
+
+}  // namespace efc

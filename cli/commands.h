@@ -1,0 +1,44 @@
+// The efc subcommands (shared/spec/cli.md), one file each. Each takes its
+// parsed options and the Report every message goes through, and returns the
+// process exit code.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli/report.h"
+#include "runtime/efc_profile.h"
+
+namespace efc {
+
+int run_cli(int argc, char** argv);
+
+int cmd_check(Report& report, const std::vector<std::string>& specs, bool dump_ir);
+int cmd_compile(Report& report, const std::vector<std::string>& specs,
+                const std::vector<std::string>& targets, const std::string& out_dir);
+int cmd_explain(Report& report, const std::string& code, bool list);
+int cmd_fmt(Report& report, const std::vector<std::string>& files, bool check_only);
+int cmd_convert(Report& report, const std::string& in, const std::string& out);
+
+struct PlayArgs {
+  std::string spec, profile, csv, render, plot;
+  double duration = 0, dt = 0.002, fps = 30;
+};
+int cmd_play(Report& report, const PlayArgs& args);
+
+struct ParityArgs {
+  std::string spec, profile, bullet_exe, csv_dir;
+  double duration = 0, dt = 0.002;
+};
+int cmd_parity(Report& report, const ParityArgs& args);
+
+// Shared by play and parity (run_options.cc).
+// --duration and --dt: a positive duration (at most 1e5 s), 0 < dt <= 0.1 s
+// and dt <= duration, at most 50 million steps. Reports E0910 and returns
+// false when they are unusable.
+bool check_timing(Report& report, double duration, double dt);
+// Parses --profile (reading csv:FILE), reporting what is wrong; returns 0 or
+// the exit code (2: usage or unreadable file, 1: bad CSV content).
+int parse_profile_option(Report& report, const std::string& text, Profile* profile);
+
+}  // namespace efc

@@ -1,0 +1,138 @@
+// efc compile SPEC... --target T... -o OUTDIR: all-or-nothing. Every target of
+// every spec is generated in memory and written into a staging folder next to
+// OUTDIR; only when all succeeded are the target folders moved into place
+// (rename), so an error leaves OUTDIR untouched.
+#include <unistd.h>
+
+#include <filesystem>
+#include <set>
+
+#include "backends/backend.h"
+#include "cli/commands.h"
+
+namespace fs = std::filesystem;
+
+namespace efc {
+namespace {
+
+struct Staging {
+  fs::path path;
+  explicit Staging(const fs::path& parent) {
+    std::string tmpl = (parent / ".efc-staging-XXXXXX").string();
+    if (mkdtemp(tmpl.data())) path = tmpl;
+  }
+  ~Staging() {
+    std::error_code ec;
+    if (!path.empty()) fs::remove_all(path, ec);
+  }
+};
+
+// The backends `targets` names, each once ("all" is every one); nullopt after
+// reporting an unknown name.
+std::optional<std::vector<const Backend*>> choose_backends(Report& report,
+                                                           const std::vector<std::string>& targets) {
+  std::vector<const Backend*> chosen;
+  std::set<std::string> seen;
+  for (const std::string& t : targets) {
+    if (t == "all") {
+      for (const Backend* b : all_backends())
+        if (seen.insert(b->name()).second) chosen.push_back(b);
+      continue;
+    }
+    const Backend* b = find_backend(t);
+    if (!b) {
+      std::string names;
+      for (const Backend* x : all_backends()) {
+        names += std::string(" ") + x->name();
+        for (const std::string& alias : x->aliases()) names += " " + alias;
+      }
+      report.fail("E0910", "unknown target '" + t + "' (targets: all" + names + ")", kExitUsage);
+      return std::nullopt;
+    }
+    if (seen.insert(b->name()).second) chosen.push_back(b);
+  }
+  return chosen;
+}
+
+}  // namespace
+
+int cmd_compile(Report& report, const std::vector<std::string>& specs,
+                const std::vector<std::string>& targets, const std::string& out_dir) {
+  const auto chosen = choose_backends(report, targets);
+  if (!chosen) return kExitUsage;
+
+  // Read and check every spec first: no output at all if any is wrong.
+  std::vector<Object> objects;
+  int rc = kExitOk;
+  for (const std::string& spec : specs) {
+    int load_rc = kExitOk;
+    std::optional<Object> obj = report.load(spec, &load_rc);
+    if (!obj) {
+      rc = std::max(rc, load_rc);
+      continue;
+    }
+    objects.push_back(std::move(*obj));
+  }
+  if (rc != kExitOk) return rc;
+  if (objects.size() > 1) {
+    std::set<std::string> names;
+    for (const Object& o : objects)
+      if (!names.insert(o.name).second)
+        return report.fail("E0911",
+                           "two specs are both named '" + o.name + "'; their outputs would collide in " +
+                               out_dir + "/" + o.name,
+                           kExitBadInput);
+  }
+
+  const fs::path out = fs::absolute(out_dir);
+  std::error_code ec;
+  if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+    return report.fail("E0910", "'" + out_dir + "' exists and is not a folder", kExitUsage);
+  const fs::path parent = out.parent_path();
+  if (!fs::is_directory(parent, ec))
+    return report.fail("E0900", "the folder '" + parent.string() + "' does not exist", kExitUsage);
+  Staging staging(parent);
+  if (staging.path.empty())
+    return report.fail("E0900", "cannot write into '" + parent.string() + "'", kExitUsage);
+
+  // Generate every target in memory and stage it: (folder under OUTDIR) each.
+  std::vector<fs::path> produced;
+  for (const Object& obj : objects) {
+    for (const Backend* b : *chosen) {
+      const fs::path rel = objects.size() > 1 ? fs::path(obj.name) / b->name() : fs::path(b->name());
+      const fs::path dir = staging.path / rel;
+      std::vector<OutputFile> files;
+      // Backends fail only on what the checks cannot see (a mesh that did not
+      // load) or on I/O: exit 2.
+      if (!b->generate(obj, report.diags(), &files)) {
+        report.flush();
+        return kExitUsage;
+      }
+      fs::create_directories(dir, ec);
+      if (ec) return report.fail("E0900", "cannot create " + dir.string() + ": " + ec.message(), kExitUsage);
+      if (!write_output_files(dir.string(), files, report.diags())) {
+        report.flush();
+        return kExitUsage;
+      }
+      report.flush();
+      produced.push_back(rel);
+      report.note("compiled " + obj.name + " -> " + (fs::path(out_dir) / rel).string());
+    }
+  }
+
+  // Commit: move each target folder into place, replacing an older one.
+  fs::create_directories(out, ec);
+  if (ec) return report.fail("E0900", "cannot create '" + out_dir + "': " + ec.message(), kExitUsage);
+  for (const fs::path& rel : produced) {
+    const fs::path dest = out / rel;
+    fs::create_directories(dest.parent_path(), ec);
+    fs::remove_all(dest, ec);
+    fs::rename(staging.path / rel, dest, ec);
+    if (ec)
+      return report.fail("E0900", "cannot move output into '" + dest.string() + "': " + ec.message(),
+                         kExitUsage);
+  }
+  return kExitOk;
+}
+
+}  // namespace efc
