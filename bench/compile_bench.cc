@@ -20,7 +20,7 @@
 
 #include "backends/backend.h"
 #include "backends/mujoco/mujoco_backend.h"
-#include "backends/output_file.h"
+#include "backends/common/output_file.h"
 #include "bench/bench_common.h"
 #include "compiler/core/load.h"
 #include "harness/mujoco_errors.h"
