@@ -2,6 +2,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -152,8 +153,6 @@ int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog
     diags.error("E0901", obj.file, 0, 0, "", "binding the templates failed: " + controller.error());
     return 1;
   }
-  controller.reset(m, d);
-
   // The receptors the profile moves, through their efc_drive_<part> actuators.
   std::vector<Drive> drives;
   for (int pi : lowering::profile_driven_receptors(obj)) {
@@ -180,6 +179,22 @@ int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog
       diags.warning("W0902", opts.profile.csv_path, 1, 1, "",
                     "profile CSV has no column for receptor '" + p.name + "'; it holds its initial position");
   }
+  // Every receptor starts where its profile starts (ramp, sweep and press:N at
+  // the lower limit; hold:V at the initial position; csv:FILE at its first
+  // row), so the first row (t = 0) and the templates' initial state see the
+  // profile's start, not the spec's initial position: a receptor that jumped
+  // there during the first steps would cross a threshold at the initial
+  // position twice.
+  for (const Drive& dr : drives) {
+    const Joint& j = *obj.parts[dr.part].joint;
+    double q = profile_target(opts.profile, obj.parts[dr.part].name, dr.lo, dr.hi, dr.q0, 0.0, opts.duration);
+    if (j.has_range) q = std::clamp(q, j.lo, j.hi);
+    d->qpos[dr.qpos] = q;
+    d->ctrl[dr.actuator] = q;
+  }
+  mj_forward(m, d);
+  controller.reset(m, d);
+
   if (opts.profile.kind == Profile::Kind::Hold && opts.profile.hold_at == Profile::HoldAt::Value) {
     for (const Drive& dr : drives)
       if (opts.profile.hold_value < dr.lo || opts.profile.hold_value > dr.hi)
