@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -28,6 +29,7 @@
 #include <vector>
 
 #include "backends/backend.h"
+#include "backends/common/lowering.h"
 #include "backends/mujoco/mujoco_backend.h"
 #include "backends/urdf/urdf_backend.h"
 #include "compiler/core/load.h"
@@ -436,6 +438,38 @@ TEST_P(UrdfExample, SidecarNamesWhatTheUrdfHas) {
       EXPECT_TRUE(J["spring"].is_null());
     }
   }
+}
+
+// MuJoCo's own URDF importer loads every example (Genesis and Isaac Lab load
+// the same file): meshes found, every movable joint there by name with its
+// type and limits, carrying the mass of its part and everything on it.
+TEST_P(UrdfExample, LoadsInMujocosUrdfImporter) {
+  efc::install_mujoco_handlers();
+  char err[1000] = "";
+  std::unique_ptr<mjModel, void (*)(mjModel*)> m(mj_loadXML(path_.c_str(), nullptr, err, sizeof err),
+                                                 mj_deleteModel);
+  ASSERT_TRUE(m) << err;
+  const efc::lowering::Layout layout = efc::lowering::make_layout(obj_);
+  std::function<double(int)> carried = [&](int part) {
+    double mass = obj_.parts[part].mass_props.mass;
+    for (int c : layout.children[part]) mass += carried(c);
+    return mass;
+  };
+  for (size_t i = 0; i < obj_.parts.size(); ++i) {
+    const efc::Part& p = obj_.parts[i];
+    if (!p.joint || !p.joint->movable()) continue;
+    const int j = mj_name2id(m.get(), mjOBJ_JOINT, p.name.c_str());
+    ASSERT_GE(j, 0) << p.name;
+    EXPECT_EQ(m->jnt_type[j], p.joint->type == efc::JointType::Prismatic ? mjJNT_SLIDE : mjJNT_HINGE);
+    if (p.joint->type != efc::JointType::Continuous) {
+      EXPECT_TRUE(m->jnt_limited[j]) << p.name;
+      EXPECT_DOUBLE_EQ(m->jnt_range[2 * j], p.joint->lo);
+      EXPECT_DOUBLE_EQ(m->jnt_range[2 * j + 1], p.joint->hi);
+    }
+    // Site links weigh 1e-6 kg each.
+    EXPECT_NEAR(m->body_subtreemass[m->jnt_bodyid[j]], carried(static_cast<int>(i)), 1e-4) << p.name;
+  }
+  EXPECT_GT(m->ngeom, 0);
 }
 
 // Forward kinematics: every part's frame (three points fixed to it) lands where

@@ -48,6 +48,10 @@ class Writer {
         << number(kVelocityLimit) << " (rad/s or m/s) are efc defaults, not from the spec.\n"
         << "     Mesh paths are relative to this file. -->\n";
     os_ << "<robot name=\"" << obj_.name << "\">\n";
+    // MuJoCo's URDF importer strips folders from mesh paths unless told not
+    // to (then meshes/<part>_0.stl is not found); urdfdom and the other
+    // loaders ignore this element.
+    os_ << "  <mujoco>\n    <compiler strippath=\"false\"/>\n  </mujoco>\n";
     for (size_t i = 0; i < obj_.parts.size(); ++i) {
       const Part& p = obj_.parts[i];
       const auto c = p.rgba.value_or(
