@@ -259,12 +259,12 @@ Model make_model(const Object& obj, double timestep) {
     M.warnings.push_back("bullet: function '" + f.name + "': " + what);
     M.warning_pointers.push_back(f.effect.loc.pointer);
   }
-  bool rgba = false;
-  for (const Part& p : obj.parts) rgba |= p.rgba.has_value();
-  if (rgba) {
-    M.warnings.push_back("bullet: rgba (the program is headless and draws nothing): colours are not emitted");
-    M.warning_pointers.push_back("");
-  }
+  for (const Part& p : obj.parts)
+    if (p.rgba) {  // said once, at the first colour
+      M.warnings.push_back("bullet: rgba (the program is headless and draws nothing): colours are not emitted");
+      M.warning_pointers.push_back(p.loc.pointer + "/rgba");
+      break;
+    }
   for (const Link& k : M.links)
     if (k.friction > 0 && !k.kinematic) {
       // Represented, with a different model: say so once.
