@@ -82,6 +82,16 @@ int run_cli(int argc, char** argv) {
   parityc->add_option("--csv-dir", parity.csv_dir, "also write mujoco.csv, bullet.csv, receptors.csv into DIR");
   add_common(parityc, &common, &format);
 
+  ReplayArgs replay;
+  CLI::App* replayc = app.add_subcommand(
+      "replay", "run the function templates over a profile with no simulator (ideal joints)");
+  replayc->add_option("SPEC", replay.spec, "spec file")->required();
+  replayc->add_option("--profile", replay.profile, "ramp, sweep, press:N, hold:V (lo/hi), csv:FILE")->required();
+  replayc->add_option("--duration", replay.duration, "seconds")->required();
+  replayc->add_option("--dt", replay.dt, "timestep in seconds (default 0.002)");
+  replayc->add_option("--csv", replay.csv, "write the log: t, F.s_R, F.s_E, F.measured")->required();
+  add_common(replayc, &common, &format);
+
   std::vector<std::string> fmt_files;
   bool fmt_check = false;
   CLI::App* fmt = app.add_subcommand("fmt", "rewrite .efc (and .json) specs in canonical form");
@@ -121,6 +131,7 @@ int run_cli(int argc, char** argv) {
   if (*compile) return cmd_compile(report, specs, targets, out_dir);
   if (*playc) return cmd_play(report, play);
   if (*parityc) return cmd_parity(report, parity);
+  if (*replayc) return cmd_replay(report, replay);
   if (*explain) return cmd_explain(report, code, list);
   if (*fmt) return cmd_fmt(report, fmt_files, fmt_check);
   if (*convert) return cmd_convert(report, convert_in, convert_out);

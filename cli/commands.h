@@ -32,7 +32,13 @@ struct ParityArgs {
 };
 int cmd_parity(Report& report, const ParityArgs& args);
 
-// Shared by play and parity (run_options.cc).
+struct ReplayArgs {
+  std::string spec, profile, csv;
+  double duration = 0, dt = 0.002;
+};
+int cmd_replay(Report& report, const ReplayArgs& args);
+
+// Shared by play, parity and replay (run_options.cc).
 // --duration and --dt: a positive duration (at most 1e5 s), 0 < dt <= 0.1 s
 // and dt <= duration, at most 50 million steps. Reports E0910 and returns
 // false when they are unusable.

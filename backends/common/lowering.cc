@@ -193,6 +193,28 @@ std::vector<FunctionRow> function_rows(const Object& obj) {
   return rows;
 }
 
+ReplayModel replay_model(const Object& obj) {
+  ReplayModel model;
+  const std::vector<int> profile = profile_driven_receptors(obj);
+  std::vector<int> joint_of(obj.parts.size(), -1);
+  for (size_t i = 0; i < obj.parts.size(); ++i) {
+    const Part& p = obj.parts[i];
+    if (!p.joint || !p.joint->movable()) continue;
+    const Joint& j = *p.joint;
+    const bool continuous = j.type == JointType::Continuous;
+    joint_of[i] = static_cast<int>(model.joints.size());
+    model.joints.push_back({p.name, continuous ? 0.0 : j.lo, continuous ? 2 * kPi : j.hi,
+                            j.initial.value_or(0.0),
+                            std::find(profile.begin(), profile.end(), static_cast<int>(i)) != profile.end()});
+  }
+  for (const FunctionRow& r : function_rows(obj)) {
+    const bool geometry = r.params.effect.kind == efc_rt::kGeometry;
+    model.functions.push_back({obj.functions[r.function].name, r.params, joint_of[r.receptor],
+                               geometry ? joint_of[r.effector] : -1});
+  }
+  return model;
+}
+
 DriveGains drive_gains(const Object& obj, const Layout& L, int part, double q_lo, double q_hi,
                        double tolerance, double hz, double timestep, const double* stiffness,
                        const double* damping) {

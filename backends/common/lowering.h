@@ -14,6 +14,7 @@
 
 #include "compiler/core/resolve.h"
 #include "compiler/ir.h"
+#include "runtime/efc_replay.h"
 #include "runtime/efc_runtime.h"
 
 namespace efc {
@@ -100,6 +101,16 @@ struct FunctionRow {
 };
 // In evaluation order.
 std::vector<FunctionRow> function_rows(const Object& obj);
+
+// The object as the no-simulator replay sees it (runtime/efc_replay.h):
+// every movable joint in spec order (named after its part; a continuous one
+// spans [0, 2 pi]) and the function rows, exactly as <name>_functions.json
+// gives them to efc_templates.py.
+struct ReplayModel {
+  std::vector<ReplayJoint> joints;
+  std::vector<ReplayFunction> functions;
+};
+ReplayModel replay_model(const Object& obj);
 
 // ---------------------------------------------------------------- drives
 // Gains of a position servo on part `part`'s joint.
