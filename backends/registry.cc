@@ -6,9 +6,13 @@ namespace efc {
 const Backend* mujoco_backend();
 const Backend* urdf_backend();
 const Backend* bullet_backend();
+const Backend* genesis_backend();
+const Backend* isaaclab_backend();
+const Backend* omnigibson_backend();
 
 const std::vector<const Backend*>& all_backends() {
-  static const std::vector<const Backend*> table = {mujoco_backend(), urdf_backend(), bullet_backend()};
+  static const std::vector<const Backend*> table = {mujoco_backend(),  urdf_backend(),     bullet_backend(),
+                                                    genesis_backend(), isaaclab_backend(), omnigibson_backend()};
   return table;
 }
 

@@ -23,6 +23,16 @@ const std::vector<EmbeddedFile>& embedded_mujoco_runtime();
 // efc_bullet_engine.h: the fixed part of every generated Bullet program.
 const std::vector<EmbeddedFile>& embedded_bullet_engine();
 
+// efc_templates.py: the runtime every Python target carries.
+const std::vector<EmbeddedFile>& embedded_python_runtime();
+// Each Python target's fixed glue (efc_<target>.py) and its facts (target.json).
+const std::vector<EmbeddedFile>& embedded_genesis_glue();
+const std::vector<EmbeddedFile>& embedded_genesis_facts();
+const std::vector<EmbeddedFile>& embedded_isaaclab_glue();
+const std::vector<EmbeddedFile>& embedded_isaaclab_facts();
+const std::vector<EmbeddedFile>& embedded_omnigibson_glue();
+const std::vector<EmbeddedFile>& embedded_omnigibson_facts();
+
 // The text of the one file in `set` (a set of one file, such as the engine).
 inline std::string embedded_text(const std::vector<EmbeddedFile>& set) {
   return set.empty() ? std::string() : std::string(set.front().text);
