@@ -10,6 +10,9 @@
 //                          system's share of compile_mujoco
 //   mujoco_load/<spec>     mj_loadXML of the emitted XML: what MuJoCo itself
 //                          takes to load the result (compile should be well under)
+//   emit_<target>/<spec>   every registered target's Backend::generate on the
+//                          loaded object: the emission alone, per target, in
+//                          memory (no reading, no checking, no files)
 // Each is repeated 5 times and reported as mean / median / stddev (ms).
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>
@@ -153,6 +156,30 @@ void BM_mujoco_load(benchmark::State& state, const efc_bench::BenchSpec& spec) {
   set_counters(state, *obj);
 }
 
+// One target's emission: generate its whole folder in memory from the
+// loaded, checked object.
+void BM_emit(benchmark::State& state, const efc_bench::BenchSpec& spec, const efc::Backend* backend) {
+  std::string error;
+  const auto obj = efc_bench::load(spec.path, &error);
+  if (!obj) return state.SkipWithError(error.c_str());
+  size_t bytes = 0, count = 0;
+  for (auto _ : state) {
+    efc::Diagnostics diags;
+    std::vector<efc::OutputFile> files;
+    if (!backend->generate(*obj, diags, &files)) {
+      state.SkipWithError(("generate failed for " + spec.path).c_str());
+      break;
+    }
+    count = files.size();
+    bytes = 0;
+    for (const efc::OutputFile& f : files) bytes += f.bytes.size();
+    benchmark::DoNotOptimize(files.data());
+  }
+  state.counters["files"] = static_cast<double>(count);
+  state.counters["bytes"] = static_cast<double>(bytes);
+  set_counters(state, *obj);
+}
+
 template <class F>
 void add(const std::string& kind, const efc_bench::BenchSpec& spec, F f) {
   benchmark::RegisterBenchmark((kind + "/" + spec.name).c_str(), f, spec)
@@ -176,6 +203,9 @@ int main(int argc, char** argv) {
     add("generate_mujoco", spec, BM_generate);
     add("write_files", spec, BM_write_files);
     add("mujoco_load", spec, BM_mujoco_load);
+    for (const efc::Backend* backend : efc::all_backends())
+      add(std::string("emit_") + backend->name(), spec,
+          [backend](benchmark::State& st, const efc_bench::BenchSpec& sp) { BM_emit(st, sp, backend); });
   }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -177,6 +177,18 @@ def main(argv):
         other.append([spec, cell(u, f), cell(b, f)])
     table(["spec", "urdf", "bullet"], other)
 
+    targets = sorted({k[len("emit_"):] for k, _ in comp if k.startswith("emit_")},
+                     key=lambda t: (["mujoco", "urdf", "bullet"].index(t) if t in ("mujoco", "urdf", "bullet") else 9, t))
+    if targets:
+        print()
+        print("Emission per target: Backend::generate of the loaded object, in memory (ms, median)")
+        rows = []
+        kinds = {"emit_" + t for t in targets}
+        for spec in specs_in(comp, kinds):
+            f = lambda e: "%.3f" % ms(e)
+            rows.append([spec] + [cell(comp.get(("emit_" + t, spec)), f) for t in targets])
+        table(["spec"] + targets, rows)
+
     for group, title, target in (
             ("play", "Playback without particles", True),
             ("play_fluid", "Playback with particles (fluid effects; informational)", False)):

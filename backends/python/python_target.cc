@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <sstream>
 
 #include "backends/common/naming.h"
@@ -17,11 +18,6 @@ namespace {
 
 using json = nlohmann::json;
 
-// target.json, read once (it is compiled in: a parse failure is a build defect
-// the conformance test shows).
-json read_facts(const PythonTargetSpec& spec) {
-  return json::parse(embedded_text(spec.facts()), nullptr, /*allow_exceptions=*/false);
-}
 
 std::string fact(const json& facts, const char* key) {
   return facts.contains(key) && facts[key].is_string() ? facts[key].get<std::string>() : std::string();
@@ -221,8 +217,16 @@ void warn_approximations(const Object& obj, const PythonTargetSpec& spec, const 
 
 }  // namespace
 
+PythonTargetBackend::PythonTargetBackend(PythonTargetSpec spec) : spec_(std::move(spec)) {}
+
 bool PythonTargetBackend::generate(const Object& obj, Diagnostics& diags, std::vector<OutputFile>* files) const {
-  const json facts = read_facts(spec_);
+  // target.json is compiled in: a file that does not parse is a build defect
+  // (the conformance test shows it), reported rather than thrown.
+  static thread_local std::map<std::string, json> parsed;
+  auto it = parsed.find(spec_.name);
+  if (it == parsed.end())
+    it = parsed.emplace(spec_.name, json::parse(embedded_text(spec_.facts()), nullptr, false)).first;
+  const json& facts = it->second;
   if (facts.is_discarded() || !facts.contains("effects") || !facts.contains("springs") ||
       !facts.contains("friction")) {
     diags.error("E0900", obj.file, 0, 0, "", std::string(spec_.name) + ": the target's facts (target.json) are unreadable",

@@ -26,7 +26,7 @@ struct PythonTargetSpec {
 
 class PythonTargetBackend : public Backend {
  public:
-  explicit PythonTargetBackend(PythonTargetSpec spec) : spec_(std::move(spec)) {}
+  explicit PythonTargetBackend(PythonTargetSpec spec);
   const char* name() const override { return spec_.name; }
   const char* description() const override { return spec_.description; }
   std::vector<std::string> aliases() const override { return spec_.aliases; }
