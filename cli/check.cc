@@ -9,17 +9,10 @@ namespace efc {
 
 int cmd_check(Report& report, const std::vector<std::string>& specs, bool dump_ir) {
   int rc = kExitOk;
-  nlohmann::json dumps = nlohmann::json::array();
-  for (const std::string& spec : specs) {
-    int load_rc = kExitOk;
-    std::optional<Object> obj = report.load(spec, &load_rc);
-    if (!obj) {
-      rc = std::max(rc, load_rc);
-      continue;
-    }
-    if (dump_ir) dumps.push_back(ir_to_json(*obj));
-  }
+  const std::vector<Object> objects = load_all(report, specs, &rc);
   if (dump_ir && rc == kExitOk) {
+    nlohmann::json dumps = nlohmann::json::array();
+    for (const Object& obj : objects) dumps.push_back(ir_to_json(obj));
     const nlohmann::json& out = dumps.size() == 1 ? dumps[0] : dumps;
     std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   }

@@ -3,6 +3,7 @@
 // process exit code.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,13 +39,16 @@ struct ReplayArgs {
 };
 int cmd_replay(Report& report, const ReplayArgs& args);
 
-// Shared by play, parity and replay (run_options.cc).
-// --duration and --dt: a positive duration (at most 1e5 s), 0 < dt <= 0.1 s
-// and dt <= duration, at most 50 million steps. Reports E0910 and returns
-// false when they are unusable.
-bool check_timing(Report& report, double duration, double dt);
-// Parses --profile (reading csv:FILE), reporting what is wrong; returns 0 or
-// the exit code (2: usage or unreadable file, 1: bad CSV content).
-int parse_profile_option(Report& report, const std::string& text, Profile* profile);
+// Shared by play, parity and replay (run_options.cc): checks --duration and
+// --dt (a positive duration of at most 1e5 s, 0 < dt <= 0.1 s, dt <= duration,
+// at most 50 million steps), parses --profile (reading csv:FILE) and loads the
+// spec, reporting whatever is wrong. nullopt with *rc = 2 (usage, unreadable
+// file) or 1 (bad CSV content, a wrong spec).
+std::optional<Object> load_for_run(Report& report, const std::string& spec, const std::string& profile_text,
+                                   double duration, double dt, Profile* profile, int* rc);
+
+// Shared by check and compile: every spec loaded, every problem reported; *rc
+// the worst exit code (0 when all loaded).
+std::vector<Object> load_all(Report& report, const std::vector<std::string>& specs, int* rc);
 
 }  // namespace efc

@@ -8,24 +8,13 @@
 #include <set>
 
 #include "backends/backend.h"
+#include "backends/common/temp_dir.h"
 #include "cli/commands.h"
 
 namespace fs = std::filesystem;
 
 namespace efc {
 namespace {
-
-struct Staging {
-  fs::path path;
-  explicit Staging(const fs::path& parent) {
-    std::string tmpl = (parent / ".efc-staging-XXXXXX").string();
-    if (mkdtemp(tmpl.data())) path = tmpl;
-  }
-  ~Staging() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove_all(path, ec);
-  }
-};
 
 // The backends `targets` names, each once ("all" is every one); nullopt after
 // reporting an unknown name.
@@ -62,17 +51,8 @@ int cmd_compile(Report& report, const std::vector<std::string>& specs,
   if (!chosen) return kExitUsage;
 
   // Read and check every spec first: no output at all if any is wrong.
-  std::vector<Object> objects;
   int rc = kExitOk;
-  for (const std::string& spec : specs) {
-    int load_rc = kExitOk;
-    std::optional<Object> obj = report.load(spec, &load_rc);
-    if (!obj) {
-      rc = std::max(rc, load_rc);
-      continue;
-    }
-    objects.push_back(std::move(*obj));
-  }
+  const std::vector<Object> objects = load_all(report, specs, &rc);
   if (rc != kExitOk) return rc;
   if (objects.size() > 1) {
     std::set<std::string> names;
@@ -91,8 +71,8 @@ int cmd_compile(Report& report, const std::vector<std::string>& specs,
   const fs::path parent = out.parent_path();
   if (!fs::is_directory(parent, ec))
     return report.fail("E0900", "the folder '" + parent.string() + "' does not exist", kExitUsage);
-  Staging staging(parent);
-  if (staging.path.empty())
+  TempDir staging(parent, ".efc-staging");
+  if (staging.path().empty())
     return report.fail("E0900", "cannot write into '" + parent.string() + "'", kExitUsage);
 
   // Generate every target in memory and stage it: (folder under OUTDIR) each.
@@ -100,7 +80,7 @@ int cmd_compile(Report& report, const std::vector<std::string>& specs,
   for (const Object& obj : objects) {
     for (const Backend* b : *chosen) {
       const fs::path rel = objects.size() > 1 ? fs::path(obj.name) / b->name() : fs::path(b->name());
-      const fs::path dir = staging.path / rel;
+      const fs::path dir = staging.path() / rel;
       std::vector<OutputFile> files;
       // Backends fail only on what the checks cannot see (a mesh that did not
       // load) or on I/O: exit 2.
@@ -127,7 +107,7 @@ int cmd_compile(Report& report, const std::vector<std::string>& specs,
     const fs::path dest = out / rel;
     fs::create_directories(dest.parent_path(), ec);
     fs::remove_all(dest, ec);
-    fs::rename(staging.path / rel, dest, ec);
+    fs::rename(staging.path() / rel, dest, ec);
     if (ec)
       return report.fail("E0900", "cannot move output into '" + dest.string() + "': " + ec.message(),
                          kExitUsage);

@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include "backends/common/lowering.h"
+#include "backends/common/temp_dir.h"
 #include "cli/commands.h"
 #include "eval/bullet_program.h"
 #include "eval/parity.h"
@@ -22,18 +23,6 @@ namespace fs = std::filesystem;
 
 namespace efc {
 namespace {
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "efc-parity-XXXXXX").string();
-    if (mkdtemp(tmpl.data())) path = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove_all(path, ec);
-  }
-};
 
 std::string short_number(double v) {
   char buf[32];
@@ -92,11 +81,9 @@ void print_table(const Object& obj, const ParityArgs& args, size_t rows,
 }  // namespace
 
 int cmd_parity(Report& report, const ParityArgs& args) {
-  if (!check_timing(report, args.duration, args.dt)) return kExitUsage;
   PlayOptions opts;
-  if (const int rc = parse_profile_option(report, args.profile, &opts.profile)) return rc;
   int rc = kExitOk;
-  std::optional<Object> obj = report.load(args.spec, &rc);
+  std::optional<Object> obj = load_for_run(report, args.spec, args.profile, args.duration, args.dt, &opts.profile, &rc);
   if (!obj) return rc;
 
   std::string exe = args.bullet_exe;
@@ -124,14 +111,14 @@ int cmd_parity(Report& report, const ParityArgs& args) {
   report.flush();
   if (rc != kExitOk) return rc;
 
-  TempDir work;
-  if (work.path.empty()) return report.fail("E0900", "cannot create a temporary folder", kExitUsage);
-  const fs::path traj = work.path / "receptors.csv";
+  TempDir work("efc-parity");
+  if (work.path().empty()) return report.fail("E0900", "cannot create a temporary folder", kExitUsage);
+  const fs::path traj = work.path() / "receptors.csv";
   if (!write_trajectory(*obj, log, traj))
     return report.fail("E0900", "cannot write " + traj.string(), kExitUsage);
   SimLog bullet;
   double bullet_sps = 0;
-  if (!run_bullet_program(exe, traj.string(), args.duration, args.dt, work.path.string(), report.diags(),
+  if (!run_bullet_program(exe, traj.string(), args.duration, args.dt, work.path().string(), report.diags(),
                           &bullet.columns, &bullet.rows, &bullet_sps)) {
     report.flush();
     return kExitUsage;
@@ -142,7 +129,7 @@ int cmd_parity(Report& report, const ParityArgs& args) {
     std::string error;
     if (ec || !write_log_csv(log, (fs::path(args.csv_dir) / "mujoco.csv").string(), &error))
       return report.fail("E0900", "cannot write into " + args.csv_dir, kExitUsage);
-    fs::copy_file(work.path / "bullet.csv", fs::path(args.csv_dir) / "bullet.csv",
+    fs::copy_file(work.path() / "bullet.csv", fs::path(args.csv_dir) / "bullet.csv",
                   fs::copy_options::overwrite_existing, ec);
     fs::copy_file(traj, fs::path(args.csv_dir) / "receptors.csv", fs::copy_options::overwrite_existing, ec);
   }

@@ -8,11 +8,9 @@
 namespace efc {
 
 int cmd_play(Report& report, const PlayArgs& args) {
-  if (!check_timing(report, args.duration, args.dt)) return kExitUsage;
   PlayOptions opts;
-  if (const int rc = parse_profile_option(report, args.profile, &opts.profile)) return rc;
   int rc = kExitOk;
-  std::optional<Object> obj = report.load(args.spec, &rc);
+  std::optional<Object> obj = load_for_run(report, args.spec, args.profile, args.duration, args.dt, &opts.profile, &rc);
   if (!obj) return rc;
   opts.duration = args.duration;
   opts.dt = args.dt;

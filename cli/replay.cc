@@ -11,11 +11,9 @@
 namespace efc {
 
 int cmd_replay(Report& report, const ReplayArgs& args) {
-  if (!check_timing(report, args.duration, args.dt)) return kExitUsage;
   Profile profile;
-  if (const int rc = parse_profile_option(report, args.profile, &profile)) return rc;
   int rc = kExitOk;
-  std::optional<Object> obj = report.load(args.spec, &rc);
+  std::optional<Object> obj = load_for_run(report, args.spec, args.profile, args.duration, args.dt, &profile, &rc);
   if (!obj) return rc;
   const lowering::ReplayModel model = lowering::replay_model(*obj);
   if (profile.kind == Profile::Kind::Csv)

@@ -1,7 +1,10 @@
-// The options play and parity share: timing and the receptor profile.
+// What the commands share: loading specs, and the options play, parity and
+// replay take (timing and the receptor profile).
 #include "cli/commands.h"
 
 namespace efc {
+
+namespace {
 
 bool check_timing(Report& report, double duration, double dt) {
   if (!(duration > 0) || duration > 1e5) {
@@ -18,6 +21,7 @@ bool check_timing(Report& report, double duration, double dt) {
   return true;
 }
 
+// 0, or the exit code after reporting why --profile is unusable.
 int parse_profile_option(Report& report, const std::string& text, Profile* profile) {
   std::string error;
   int line = 0;
@@ -34,6 +38,32 @@ int parse_profile_option(Report& report, const std::string& text, Profile* profi
     return kExitBadInput;
   }
   return report.fail("E0910", error, kExitUsage);
+}
+
+}  // namespace
+
+std::optional<Object> load_for_run(Report& report, const std::string& spec, const std::string& profile_text,
+                                   double duration, double dt, Profile* profile, int* rc) {
+  if (!check_timing(report, duration, dt)) {
+    *rc = kExitUsage;
+    return std::nullopt;
+  }
+  if ((*rc = parse_profile_option(report, profile_text, profile))) return std::nullopt;
+  return report.load(spec, rc);
+}
+
+std::vector<Object> load_all(Report& report, const std::vector<std::string>& specs, int* rc) {
+  std::vector<Object> objects;
+  *rc = kExitOk;
+  for (const std::string& spec : specs) {
+    int load_rc = kExitOk;
+    std::optional<Object> obj = report.load(spec, &load_rc);
+    if (obj)
+      objects.push_back(std::move(*obj));
+    else
+      *rc = std::max(*rc, load_rc);
+  }
+  return objects;
 }
 
 }  // namespace efc

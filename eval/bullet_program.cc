@@ -11,25 +11,12 @@
 #include <sstream>
 
 #include "backends/bullet/bullet_backend.h"
+#include "backends/common/temp_dir.h"
 
 namespace fs = std::filesystem;
 
 namespace efc {
 namespace {
-
-struct TempDir {
-  fs::path path;
-  TempDir(const fs::path& parent, const std::string& stem) {
-    std::error_code ec;
-    fs::create_directories(parent, ec);
-    std::string tmpl = (parent / (stem + "-XXXXXX")).string();
-    if (mkdtemp(tmpl.data())) path = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove_all(path, ec);
-  }
-};
 
 std::string shell_quote(const std::string& s) {
   std::string out = "'";
@@ -91,16 +78,16 @@ std::string build_bullet_program(const Object& obj, Diagnostics& diags, const Pr
     return exe.string();
   }
   TempDir staging(root, "staging");
-  if (staging.path.empty()) {
+  if (staging.path().empty()) {
     diags.error("E0900", root.string(), 0, 0, "", "cannot create a folder under " + root.string());
     return "";
   }
-  const fs::path src = staging.path / "src";
+  const fs::path src = staging.path() / "src";
   fs::create_directories(src);
   if (!write_output_files(src.string(), files, diags)) return "";
   progress("parity: building the Bullet program in " + dest.string() + " (cmake; cached for the next run)");
-  const fs::path build = staging.path / "build";
-  const fs::path log = staging.path / "build.log";
+  const fs::path build = staging.path() / "build";
+  const fs::path log = staging.path() / "build.log";
   const std::string quiet = " >>" + shell_quote(log.string()) + " 2>&1";
   progress("parity: configuring...");
   if (run_command("cmake -S " + shell_quote(src.string()) + " -B " + shell_quote(build.string()) +
@@ -115,12 +102,12 @@ std::string build_bullet_program(const Object& obj, Diagnostics& diags, const Pr
     return "";
   }
   std::error_code ec;
-  fs::rename(staging.path, dest, ec);  // atomic publish; a concurrent twin may have won
+  fs::rename(staging.path(), dest, ec);  // atomic publish; a concurrent twin may have won
   if (access(exe.c_str(), X_OK) != 0) {
     diags.error("E0913", "", 0, 0, "", "the Bullet build vanished from " + dest.string());
     return "";
   }
-  if (!ec) staging.path.clear();
+  if (!ec) staging.release();
   return exe.string();
 }
 

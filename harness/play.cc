@@ -13,6 +13,7 @@
 
 #include "backends/common/lowering.h"
 #include "backends/common/naming.h"
+#include "backends/common/temp_dir.h"
 #include "backends/mujoco/mujoco_backend.h"
 #include "compiler/core/resolve.h"
 #include "harness/mujoco_errors.h"
@@ -27,19 +28,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A temporary folder removed when it goes out of scope.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "efc-play-XXXXXX").string();
-    if (mkdtemp(tmpl.data())) path = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove_all(path, ec);
-  }
-};
-
 struct ModelDeleter {
   void operator()(mjModel* m) const { mj_deleteModel(m); }
 };
@@ -53,18 +41,6 @@ struct Drive {
   int qpos = -1;
   double lo = 0, hi = 0, q0 = 0;
 };
-
-const char* effect_unit(EffectType t, const Object& obj, const Function& f) {
-  switch (t) {
-    case EffectType::Geometry:
-      return obj.parts[f.effector_index].joint->type == JointType::Prismatic ? "m" : "rad";
-    case EffectType::Illumination: return "lm";
-    case EffectType::Temperature: return "C";
-    case EffectType::Fluid: return "L/min";
-    case EffectType::Airflow: return "m/s";
-  }
-  return "";
-}
 
 bool write_frames_dir(const std::string& dir, Diagnostics& diags) {
   std::error_code ec;
@@ -113,8 +89,8 @@ bool write_log_csv(const PlayLog& log, const std::string& path, std::string* err
 int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog* log) {
   install_mujoco_handlers();
   take_mujoco_warnings();
-  TempDir tmp;
-  if (tmp.path.empty()) {
+  TempDir tmp("efc-play");
+  if (tmp.path().empty()) {
     diags.error("E0900", obj.file, 0, 0, "", "cannot create a temporary folder");
     return 2;
   }
@@ -122,7 +98,7 @@ int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog
   mjcf.drive_receptors = true;
   mjcf.timestep = opts.dt;
   std::string xml_path;
-  if (!write_mujoco_model(obj, tmp.path.string(), mjcf, diags, &xml_path)) return 2;
+  if (!write_mujoco_model(obj, tmp.path().string(), mjcf, diags, &xml_path)) return 2;
 
   char load_error[1024] = "";
   std::unique_ptr<mjModel, ModelDeleter> model;
@@ -295,7 +271,7 @@ int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog
       const bool prismatic = obj.parts[fn->receptor_index].joint->type == JointType::Prismatic;
       panels.push_back({fname + ": receptor " + fn->receptor, prismatic ? "m" : "rad", {s_r}});
       panels.push_back({fname + ": " + to_string(fn->effect.type) + " of " + fn->effector,
-                        effect_unit(fn->effect.type, obj, *fn), {s_e, meas}});
+                        lowering::effect_unit(obj, *fn), {s_e, meas}});
     }
     std::string error;
     if (!write_plot_svg(opts.plot_path, ts, panels, &error)) {

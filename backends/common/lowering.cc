@@ -134,6 +134,18 @@ Vec3 effect_direction(const Effect& e) {
   return {d[0] / n, d[1] / n, d[2] / n};
 }
 
+const char* effect_unit(const Object& obj, const Function& f) {
+  switch (f.effect.type) {
+    case EffectType::Geometry:
+      return obj.parts[effector_part(obj, f)].joint->type == JointType::Prismatic ? "m" : "rad";
+    case EffectType::Illumination: return "lm";
+    case EffectType::Temperature: return "C";
+    case EffectType::Fluid: return "L/min";
+    case EffectType::Airflow: return "m/s";
+  }
+  return "";
+}
+
 std::vector<FunctionRow> function_rows(const Object& obj) {
   std::vector<FunctionRow> rows;
   const std::vector<int> pools = droplet_pool_sizes(obj);

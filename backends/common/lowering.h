@@ -84,6 +84,10 @@ std::vector<int> profile_driven_receptors(const Object& obj);
 Vec3 effect_point(const Object& obj, const Function& f);
 Vec3 effect_direction(const Effect& e);
 
+// The unit of a function's s_E: rad or m (geometry, by the effector's
+// joint), lm, C, L/min, m/s.
+const char* effect_unit(const Object& obj, const Function& f);
+
 // One function, lowered: the runtime's parameters plus what a binding needs
 // to realise the effect. Every default the spec leaves open is filled here.
 struct FunctionRow {

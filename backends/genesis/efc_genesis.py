@@ -56,7 +56,6 @@ MARKER_LEVELS = 20             # redraw a marker when its level (1/20 steps) cha
 MARKER_MOVE = 0.002            # or when its part moved this far (m)
 GLOW_ALPHA = 0.75              # opacity of a fully glowing part's box
 GLOW_PAD = 0.002               # m added around the glowing part's bounding box
-DEFAULT_STEPS = 1000
 
 
 # ---------------------------------------------------------------------------
@@ -249,32 +248,6 @@ def droplet_leads(speed, dt, n):
     return [speed * dt * (float(e) / n) for e in range(n)]
 
 
-def resolve_run_length(steps, duration, dt):
-    """(steps, duration): either given; --steps alone: duration = steps dt; --duration
-    alone: steps = round(duration / dt); neither: DEFAULT_STEPS."""
-    if steps is None and duration is None:
-        steps = DEFAULT_STEPS
-    if steps is None:
-        steps = efc.lround(duration / dt)
-    if duration is None:
-        duration = steps * dt
-    return steps, duration
-
-
-def profile_warnings(table, profile):
-    """What efc play warns about a profile: a CSV without a receptor's column, a hold
-    value outside a receptor's range."""
-    out = []
-    for j in efc.profile_joints(table):
-        if profile.kind == "csv" and j["part"] not in profile.csv_parts:
-            out.append("profile CSV has no column for receptor '%s'; it holds its initial position"
-                       % j["part"])
-        if profile.kind == "hold" and profile.hold_at == "value" and not j["lo"] <= profile.hold_value <= j["hi"]:
-            out.append("hold value %s is outside the range of receptor '%s'; its joint limit stops it"
-                       % (efc.format_value(profile.hold_value), j["part"]))
-    return out
-
-
 def kept_links(table):
     """Links the URDF loader must not merge away: every joint's link and every function's
     effector and site link (Genesis merges fixed-joint links by default)."""
@@ -309,17 +282,7 @@ def parse_args(argv, prog):
     parser = argparse.ArgumentParser(
         prog=prog,
         description="Run the object in Genesis %s with its efc function templates." % GENESIS_VERSION)
-    parser.add_argument("--steps", type=int, default=None,
-                        help="simulation steps (default: --duration / dt, else %d)" % DEFAULT_STEPS)
-    parser.add_argument("--dt", type=float, default=None,
-                        help="timestep in seconds (default: the functions file's timestep)")
-    parser.add_argument("--profile", default=None,
-                        help="drive the receptors: ramp, sweep, press:N, hold:V|lo|hi, csv:FILE "
-                             "(without it they are left to you or your agent)")
-    parser.add_argument("--duration", type=float, default=None,
-                        help="seconds the profile spans (default: steps x dt)")
-    parser.add_argument("--csv", default=None, help="write t, F.s_R, F.s_E, F.measured per function")
-    parser.add_argument("--headless", action="store_true", help="no viewer window")
+    efc.add_run_arguments(parser, headless_help="no viewer window")
     parser.add_argument("--backend", choices=("cpu", "gpu"), default="cpu",
                         help="Genesis backend (default cpu; gpu falls back to cpu when none is found)")
     parser.add_argument("--precision", choices=("32", "64"), default="32",
@@ -347,22 +310,12 @@ class UsageError(Exception):
 
 
 def check_args(args):
-    if args.steps is not None and args.steps < 1:
-        raise UsageError("--steps must be >= 1")
-    if args.dt is not None and not (args.dt > 0 and math.isfinite(args.dt)):
-        raise UsageError("--dt must be a positive number of seconds")
-    if args.duration is not None and not (args.duration > 0 and math.isfinite(args.duration)):
-        raise UsageError("--duration must be a positive number of seconds")
     if args.substeps is not None and args.substeps < 1:
         raise UsageError("--substeps must be >= 1")
     if args.props < 0:
         raise UsageError("--props must be >= 0")
     if args.max_particles is not None and args.max_particles < 1:
         raise UsageError("--max-particles must be >= 1")
-    if args.csv:
-        folder = os.path.dirname(os.path.abspath(args.csv))
-        if not os.path.isdir(folder):
-            raise UsageError("cannot write '%s': no folder '%s'" % (args.csv, folder))
 
 
 # ---------------------------------------------------------------------------
@@ -408,27 +361,14 @@ def main(argv, object_name, urdf_file, functions_file):
     if not os.path.isfile(urdf_path):
         say("cannot read the object's URDF '%s'" % urdf_path)
         return 2
-    dt = args.dt if args.dt is not None else table["timestep"]
-    steps, duration = resolve_run_length(args.steps, args.duration, dt)
     try:
-        efc.check_timing(duration, dt)
+        run = efc.run_settings(args, table)
     except efc.EfcError as e:
         say(e.message)
-        return 2
-    profile = None
-    if args.profile is not None:
-        try:
-            profile = efc.parse_profile(args.profile)
-        except efc.EfcError as e:
-            if e.line > 0:
-                say("%s:%d: %s" % (args.profile[4:], e.line, e.message))
-                return 1
-            say(e.message)
-            return 2
-        if not efc.profile_joints(table):
-            say.warn("--profile: this object has no receptor for a profile to drive")
-        for w in profile_warnings(table, profile):
-            say.warn(w)
+        return e.status
+    for w in run.warnings:
+        say.warn(w)
+    dt, steps, duration, profile = run.dt, run.steps, run.duration, run.profile
 
     try:
         import genesis as gs

@@ -453,20 +453,6 @@ def object_bounds(summary, table):
     return lo, hi
 
 
-def profile_warnings(table, profile):
-    """What a profile cannot do for this object (as efc_templates' replay warns)."""
-    out = []
-    for j in efc.profile_joints(table):
-        if profile.kind == "csv" and j["part"] not in profile.csv_parts:
-            out.append("profile CSV has no column for receptor '%s'; it holds its initial position"
-                       % j["part"])
-        if profile.kind == "hold" and profile.hold_at == "value" and not j["lo"] <= profile.hold_value <= j["hi"]:
-            out.append("hold value %s is outside the range [%s, %s] of receptor '%s'; the joint "
-                       "limit stops it" % (efc.format_value(profile.hold_value), efc.format_value(j["lo"]),
-                                           efc.format_value(j["hi"]), j["part"]))
-    return out
-
-
 def effect_functions(table, kind):
     """Indices (table order) of the functions whose effect is `kind`."""
     return [i for i, fn in enumerate(table["functions"]) if fn["effect"]["kind"] == kind]
@@ -487,15 +473,7 @@ def build_parser(prog, object_name):
         prog=prog, epilog=APP_EPILOG, allow_abbrev=False,
         description="Simulate '%s' with its function templates in Isaac Lab %s (Isaac Sim 5.1)."
                     % (object_name, ISAACLAB_VERSION))
-    p.add_argument("--steps", type=int, default=1000, help="physics steps to run (default 1000)")
-    p.add_argument("--dt", type=float, default=None, help="physics timestep in s (default: the functions file's)")
-    p.add_argument("--profile", default=None,
-                   help="drive the receptor joints (drive_by = profile) as efc play does: ramp, sweep, "
-                        "press:N, hold:V|lo|hi, csv:FILE; without it they are left to you")
-    p.add_argument("--duration", type=float, default=None,
-                   help="seconds the profile spans (default: steps x dt)")
-    p.add_argument("--csv", default=None, help="write t, F.s_R, F.s_E, F.measured per function F")
-    p.add_argument("--headless", action="store_true", help="run without a window (AppLauncher's --headless)")
+    efc.add_run_arguments(p, headless_help="run without a window (AppLauncher's --headless)")
     p.add_argument("--device", default="cuda:0", help="simulation device: cuda:N or cpu (default cuda:0)")
     p.add_argument("--props", type=int, default=3,
                    help="light props floating in each airflow cone to show the air (default 3)")
@@ -509,12 +487,6 @@ def parse_command_line(argv, object_name):
     prog = "%s_isaaclab.py" % object_name
     parser = build_parser(prog, object_name)
     args, rest = parser.parse_known_args(argv)
-    if args.steps < 1:
-        parser.error("--steps must be at least 1")
-    if args.dt is not None and not (args.dt > 0 and args.dt <= 0.1):
-        parser.error("--dt must be in (0, 0.1] seconds")
-    if args.duration is not None and not (args.duration > 0 and args.duration <= 1e5):
-        parser.error("--duration must be a positive number of seconds (at most 1e5)")
     if args.props < 0:
         parser.error("--props must be 0 or more")
     if args.no_props:
@@ -538,16 +510,6 @@ def main(argv, object_name, urdf_file, functions_file):
     here = os.path.dirname(os.path.abspath(__file__))
     urdf_path = os.path.join(here, urdf_file)
     functions_path = os.path.join(here, functions_file)
-    profile = None
-    if args.profile is not None:
-        try:
-            profile = efc.parse_profile(args.profile)
-        except efc.EfcError as e:
-            if e.line > 0:  # a bad line in the profile's CSV file
-                say("%s:%d: %s" % (args.profile[4:], e.line, e.message))
-                return 1
-            say(e.message)
-            return 2
     try:
         table = efc.load_functions(functions_path)
         if not os.path.isfile(urdf_path):
@@ -559,16 +521,15 @@ def main(argv, object_name, urdf_file, functions_file):
     except UsageError as e:
         say(e.message)
         return e.status
-    if args.csv is not None:
-        folder = os.path.dirname(os.path.abspath(args.csv))
-        if not os.path.isdir(folder):
-            say("cannot write '%s': no folder '%s'" % (args.csv, folder))
-            return 2
-    dt = args.dt if args.dt is not None else float(table["timestep"])
-    duration = args.duration if args.duration is not None else args.steps * dt
-    if profile is not None:
-        for w in profile_warnings(table, profile):
-            say("warning: " + w)
+    try:
+        settings = efc.run_settings(args, table)
+    except efc.EfcError as e:
+        say(e.message)
+        return e.status
+    for w in settings.warnings:
+        say("warning: " + w)
+    dt, duration, profile = settings.dt, settings.duration, settings.profile
+    args.steps = settings.steps
 
     try:
         from isaaclab.app import AppLauncher

@@ -286,16 +286,7 @@ def parse_args(argv):
         prog=PROG,
         description="Run this efc object in OmniGibson 3.7: the function templates step with "
                     "the simulation and every effect is realised in the scene.")
-    p.add_argument("--steps", type=int, default=1000, help="control steps to run (default 1000)")
-    p.add_argument("--dt", type=float, default=None,
-                   help="physics and control timestep in s (default: the functions file's timestep)")
-    p.add_argument("--profile", default=None,
-                   help="drive the receptors: ramp, sweep, press:N, hold:V|lo|hi, csv:FILE "
-                        "(without it receptors are left to the user or agent)")
-    p.add_argument("--duration", type=float, default=None,
-                   help="seconds the profile spans (default steps x dt)")
-    p.add_argument("--csv", default=None, help="write t, F.s_R, F.s_E, F.measured per step")
-    p.add_argument("--headless", action="store_true", help="no window (sets OMNIGIBSON_HEADLESS=1)")
+    efc.add_run_arguments(p, headless_help="no window (sets OMNIGIBSON_HEADLESS=1)")
     p.add_argument("--device", default=None, help="torch device for OmniGibson (e.g. cuda:0, cpu)")
     p.add_argument("--props", type=int, default=3,
                    help="light spheres placed in each airflow cone (default 3)")
@@ -313,8 +304,6 @@ def parse_args(argv):
         args = p.parse_args(argv)
     except SystemExit as e:
         raise GlueError("", code=e.code if isinstance(e.code, int) else EXIT_USAGE) from None
-    if args.steps < 1:
-        raise GlueError("--steps must be at least 1", EXIT_USAGE)
     if args.props < 0:
         raise GlueError("--props must be 0 or more", EXIT_USAGE)
     if args.max_particles < 1:
@@ -331,15 +320,14 @@ def main(argv, object_name, urdf_file, functions_file):
     try:
         args = parse_args(list(argv))
         table = load_table(functions_path)
-        dt = args.dt if args.dt is not None else table["timestep"]
-        duration = args.duration if args.duration is not None else args.steps * dt
         try:
-            efc.check_timing(duration, dt)
-            profile = efc.parse_profile(args.profile) if args.profile is not None else None
-        except efc.EfcError as e:  # as efc_templates' command line: usage errors are 2
-            if e.line > 0:
-                raise
-            raise GlueError(e.message, EXIT_USAGE) from None
+            run = efc.run_settings(args, table)
+        except efc.EfcError as e:
+            raise GlueError(e.message, e.status) from None
+        for w in run.warnings:
+            say("warning: " + w)
+        dt, duration, profile = run.dt, run.duration, run.profile
+        args.steps = run.steps
         paths = asset_paths(script_dir)
         fingerprint = asset_fingerprint(urdf_path, table, args.collision)
         if args.import_only:

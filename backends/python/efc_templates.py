@@ -992,7 +992,10 @@ def replay(table, profile, duration, dt):
     return log
 
 
-def _profile_warnings(table, profile):
+def profile_warnings(table, profile, limited=True):
+    """What efc play warns about a profile: a CSV without a receptor's column, a hold
+    value outside a receptor's range (`limited`: a simulator's joint limit stops it;
+    the replay follows it)."""
     warnings = []
     for j in profile_joints(table):
         if profile.kind == "csv" and j["part"] not in profile.csv_parts:
@@ -1000,11 +1003,99 @@ def _profile_warnings(table, profile):
                             "position" % j["part"])
         if profile.kind == "hold" and profile.hold_at == "value" and \
                 not j["lo"] <= profile.hold_value <= j["hi"]:
-            warnings.append("hold value %s is outside the range [%s, %s] of receptor '%s'; the "
-                            "replay follows it (a simulator's joint limit would stop it)"
+            warnings.append("hold value %s is outside the range [%s, %s] of receptor '%s'; %s"
                             % (format_value(profile.hold_value), format_value(j["lo"]),
-                               format_value(j["hi"]), j["part"]))
+                               format_value(j["hi"]), j["part"],
+                               "its joint limit stops it" if limited else
+                               "the replay follows it (a simulator's joint limit would stop it)"))
     return warnings
+
+
+# ---------------------------------------------------------------------------
+# What every simulator script's command line shares (backends/python/README.md).
+
+DEFAULT_STEPS = 1000
+
+
+def add_run_arguments(parser, headless_help="run without a window"):
+    """--steps, --dt, --profile, --duration, --csv and --headless."""
+    parser.add_argument("--steps", type=int, default=None,
+                        help="simulation steps (default: --duration / dt, else %d)" % DEFAULT_STEPS)
+    parser.add_argument("--dt", type=float, default=None,
+                        help="timestep in seconds (default: the functions file's timestep)")
+    parser.add_argument("--profile", default=None,
+                        help="drive the receptors no function moves, as efc play does: ramp, sweep, "
+                             "press:N, hold:V|lo|hi, csv:FILE (without it they are left to you or "
+                             "your agent)")
+    parser.add_argument("--duration", type=float, default=None,
+                        help="seconds the profile spans (default: steps x dt)")
+    parser.add_argument("--csv", default=None,
+                        help="write t, then F.s_R, F.s_E, F.measured per function F (as efc play)")
+    parser.add_argument("--headless", action="store_true", help=headless_help)
+
+
+class RunSettings:
+    """The shared options resolved: steps, dt, duration, profile (None without
+    --profile), csv (None or a path whose folder exists) and the profile's warnings."""
+
+    def __init__(self, steps, dt, duration, profile, csv, warnings):
+        self.steps = steps
+        self.dt = dt
+        self.duration = duration
+        self.profile = profile
+        self.csv = csv
+        self.warnings = warnings
+
+
+def run_settings(args, table):
+    """Resolves add_run_arguments' options against the functions table: dt defaults
+    to the table's timestep; --steps alone gives duration = steps dt, --duration alone
+    steps = round(duration / dt), neither DEFAULT_STEPS steps; the limits of efc play
+    (check_timing); --profile parsed. Raises EfcError whose `status` is the exit status:
+    2 for usage (and an unreadable file), 1 for a bad line of a csv: profile (its
+    message then starts FILE:LINE:)."""
+    def usage(message):
+        e = EfcError(message)
+        e.status = 2
+        return e
+
+    dt = float(args.dt) if args.dt is not None else float(table["timestep"])
+    if not 0 < dt <= 0.1:
+        raise usage("--dt must be in (0, 0.1] seconds")
+    steps, duration = args.steps, args.duration
+    if steps is not None and steps < 1:
+        raise usage("--steps must be at least 1")
+    if steps is None and duration is None:
+        steps = DEFAULT_STEPS
+    if steps is None:
+        check_timing_or_usage = duration > 0 and duration <= 1e5
+        if not check_timing_or_usage:
+            raise usage("--duration must be a positive number of seconds (at most 1e5)")
+        steps = max(1, lround(duration / dt))
+    if duration is None:
+        duration = steps * dt
+    try:
+        check_timing(duration, dt)
+    except EfcError as e:
+        raise usage(e.message) from None
+    if args.csv is not None:
+        folder = os.path.dirname(os.path.abspath(args.csv))
+        if not os.path.isdir(folder):
+            raise usage("cannot write '%s': no folder '%s'" % (args.csv, folder))
+    profile, warnings = None, []
+    if args.profile is not None:
+        try:
+            profile = parse_profile(args.profile)
+        except EfcError as e:
+            if e.line > 0:  # a bad line in the profile's CSV file
+                bad = EfcError("%s:%d: %s" % (args.profile[4:], e.line, e.message), line=e.line)
+                bad.status = 1
+                raise bad from None
+            raise usage(e.message) from None
+        if not profile_joints(table):
+            warnings.append("--profile: this object has no receptor for a profile to drive")
+        warnings += profile_warnings(table, profile)
+    return RunSettings(steps, dt, duration, profile, args.csv, warnings)
 
 
 def _say(message):
@@ -1044,7 +1135,7 @@ def main(argv=None):
         return 2
     try:
         table = load_functions(args.functions)
-        for warning in _profile_warnings(table, profile):
+        for warning in profile_warnings(table, profile, limited=False):
             _say("warning: " + warning)
         replay(table, profile, args.duration, args.dt).write(args.csv)
     except EfcError as e:

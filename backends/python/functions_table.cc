@@ -22,18 +22,6 @@ const char* const kEffectKinds[] = {"geometry", "illumination", "temperature", "
 
 json vec(const Vec3& v) { return json::array({v[0], v[1], v[2]}); }
 
-const char* effect_unit(const Object& obj, const lowering::FunctionRow& r) {
-  switch (obj.functions[r.function].effect.type) {
-    case EffectType::Geometry:
-      return obj.parts[r.effector].joint->type == JointType::Prismatic ? "m" : "rad";
-    case EffectType::Illumination: return "lm";
-    case EffectType::Temperature: return "C";
-    case EffectType::Fluid: return "L/min";
-    case EffectType::Airflow: return "m/s";
-  }
-  return "";
-}
-
 json drive_json(const lowering::DriveGains& g) {
   return {{"kp", g.kp}, {"kv", g.kv}, {"armature", g.armature}};
 }
@@ -102,7 +90,7 @@ json function_json(const Object& obj, const urdf::Plan& plan, const lowering::La
                   {"initial", m.initial}};
   j["effect"] = {{"kind", kEffectKinds[e.kind]},     {"e_lo", e.e_lo}, {"e_hi", e.e_hi},
                  {"time_constant", e.time_constant}, {"droplet_volume_l", e.droplet_volume_l}};
-  j["unit"] = effect_unit(obj, r);
+  j["unit"] = lowering::effect_unit(obj, f);
   const int si = plan.site_of_function[r.function];
   if (si >= 0) {
     const urdf::Site& s = plan.sites[si];

@@ -663,5 +663,54 @@ class CommandLine(TempDirTest):
         self.assertIn("warning: profile CSV has no column for receptor 'lever'", err)
 
 
+
+class RunSettingsTest(unittest.TestCase):
+    """The command line every simulator script shares (add_run_arguments, run_settings)."""
+
+    def settings(self, *argv):
+        import argparse
+        parser = argparse.ArgumentParser()
+        efc.add_run_arguments(parser)
+        table = efc.load_functions(os.path.join(FIXTURES, "toaster_functions.json"))
+        return efc.run_settings(parser.parse_args(list(argv)), table)
+
+    def test_steps_and_duration(self):
+        s = self.settings()
+        self.assertEqual((s.steps, s.dt, s.duration), (efc.DEFAULT_STEPS, 0.002, efc.DEFAULT_STEPS * 0.002))
+        s = self.settings("--steps", "100", "--dt", "0.01")
+        self.assertEqual((s.steps, s.duration), (100, 1.0))
+        s = self.settings("--duration", "1.0")
+        self.assertEqual((s.steps, s.duration), (500, 1.0))
+        s = self.settings("--steps", "10", "--duration", "5")
+        self.assertEqual((s.steps, s.duration), (10, 5.0))
+        self.assertIsNone(s.profile)
+
+    def test_usage_errors_are_status_2(self):
+        for argv in (["--steps", "0"], ["--dt", "0"], ["--dt", "0.5"], ["--duration", "-1"],
+                     ["--profile", "wiggle"], ["--csv", "/no/such/folder/x.csv"]):
+            with self.assertRaises(efc.EfcError, msg=argv) as caught:
+                self.settings(*argv)
+            self.assertEqual(caught.exception.status, 2, argv)
+
+    def test_a_bad_profile_line_is_status_1_and_located(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "p.csv")
+            with open(path, "w") as f:
+                f.write("t,lever\n0,0\n1,abc\n")
+            with self.assertRaises(efc.EfcError) as caught:
+                self.settings("--profile", "csv:" + path)
+            self.assertEqual(caught.exception.status, 1)
+            self.assertTrue(caught.exception.message.startswith(path + ":3: "))
+
+    def test_profile_warnings(self):
+        self.assertEqual(self.settings("--profile", "press:2").warnings, [])
+        w = self.settings("--profile", "hold:5").warnings
+        self.assertEqual(len(w), 1)
+        self.assertIn("lever", w[0])
+        self.assertIn("its joint limit stops it", w[0])
+        table = efc.load_functions(os.path.join(FIXTURES, "toaster_functions.json"))
+        replay = efc.profile_warnings(table, efc.parse_profile("hold:5"), limited=False)
+        self.assertIn("the replay follows it", replay[0])
+
 if __name__ == "__main__":
     unittest.main()

@@ -609,23 +609,11 @@ class PureHelpers(unittest.TestCase):
         self.assertEqual(G.droplet_leads(1.0, 0.002, 2), [0.0, 0.001])
         self.assertEqual(G.droplet_leads(1.0, 0.002, 0), [])
 
-    def test_run_length(self):
-        self.assertEqual(G.resolve_run_length(None, None, 0.002), (G.DEFAULT_STEPS, G.DEFAULT_STEPS * 0.002))
-        self.assertEqual(G.resolve_run_length(100, None, 0.01), (100, 1.0))
-        self.assertEqual(G.resolve_run_length(None, 1.0, 0.002), (500, 1.0))
-        self.assertEqual(G.resolve_run_length(10, 5.0, 0.002), (10, 5.0))
-
     def test_kept_links(self):
         keep = G.kept_links(TABLE)
         for name in ("button", "lid", "base", "bulb", "light_site", "heat_site", "water_site", "air_site"):
             self.assertIn(name, keep)
         self.assertEqual(len(keep), len(set(keep)))
-
-    def test_profile_warnings(self):
-        self.assertEqual(G.profile_warnings(TABLE, efc.parse_profile("press:2")), [])
-        w = G.profile_warnings(TABLE, efc.parse_profile("hold:0.5"))
-        self.assertEqual(len(w), 1)
-        self.assertIn("button", w[0])
 
     def test_conversions(self):
         self.assertEqual(G.to_floats([1, 2]), [1.0, 2.0])
