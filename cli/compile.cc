@@ -16,16 +16,23 @@ namespace fs = std::filesystem;
 namespace efc {
 namespace {
 
-// The backends `targets` names, each once ("all" is every one); nullopt after
-// reporting an unknown name.
-std::optional<std::vector<const Backend*>> choose_backends(Report& report,
-                                                           const std::vector<std::string>& targets) {
-  std::vector<const Backend*> chosen;
+// A backend and the folder its output goes to: the target as the user named
+// it (shared/spec/cli.md's `isaac` and `behavior` write OUTDIR/isaac/ and
+// OUTDIR/behavior/), or the backend's own name for `all`.
+struct Chosen {
+  const Backend* backend;
+  std::string folder;
+};
+
+// The backends `targets` names, each once (the first spelling wins; "all" is
+// every one); nullopt after reporting an unknown name.
+std::optional<std::vector<Chosen>> choose_backends(Report& report, const std::vector<std::string>& targets) {
+  std::vector<Chosen> chosen;
   std::set<std::string> seen;
   for (const std::string& t : targets) {
     if (t == "all") {
       for (const Backend* b : all_backends())
-        if (seen.insert(b->name()).second) chosen.push_back(b);
+        if (seen.insert(b->name()).second) chosen.push_back({b, b->name()});
       continue;
     }
     const Backend* b = find_backend(t);
@@ -38,7 +45,7 @@ std::optional<std::vector<const Backend*>> choose_backends(Report& report,
       report.fail("E0910", "unknown target '" + t + "' (targets: all" + names + ")", kExitUsage);
       return std::nullopt;
     }
-    if (seen.insert(b->name()).second) chosen.push_back(b);
+    if (seen.insert(b->name()).second) chosen.push_back({b, t});
   }
   return chosen;
 }
@@ -78,8 +85,9 @@ int cmd_compile(Report& report, const std::vector<std::string>& specs,
   // Generate every target in memory and stage it: (folder under OUTDIR) each.
   std::vector<fs::path> produced;
   for (const Object& obj : objects) {
-    for (const Backend* b : *chosen) {
-      const fs::path rel = objects.size() > 1 ? fs::path(obj.name) / b->name() : fs::path(b->name());
+    for (const Chosen& c : *chosen) {
+      const Backend* b = c.backend;
+      const fs::path rel = objects.size() > 1 ? fs::path(obj.name) / c.folder : fs::path(c.folder);
       const fs::path dir = staging.path() / rel;
       std::vector<OutputFile> files;
       // Backends fail only on what the checks cannot see (a mesh that did not

@@ -61,8 +61,8 @@ class PythonTargets(unittest.TestCase):
     def setUpClass(cls):
         cls.tmp = tempfile.mkdtemp(prefix="efc-python-targets-")
         cls.out = os.path.join(cls.tmp, "out")
-        r = efc("compile", *examples(), "--target", "genesis", "--target", "isaac",
-                "--target", "behavior", "-o", cls.out)
+        r = efc("compile", *examples(), "--target", "genesis", "--target", "isaaclab",
+                "--target", "omnigibson", "-o", cls.out)
         assert r.returncode == 0, r.stderr
         cls.indices = {t: check_api.load_index(INDEX[t]) for t in TARGETS}
 
@@ -148,6 +148,15 @@ class PythonTargets(unittest.TestCase):
                     data = f.read()
                 for absolute in (self.tmp.encode(), SOURCE.encode()):
                     self.assertNotIn(absolute, data, f"{path} names {absolute!r}")
+
+    def test_aliases_write_the_folder_the_user_named(self):
+        out = os.path.join(self.tmp, "aliases")
+        r = efc("compile", os.path.join(SOURCE, "examples", "toaster.json"), "--target", "isaac",
+                "--target", "behavior", "--target", "isaaclab", "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(os.listdir(out)), ["behavior", "isaac"])  # isaaclab: the same target
+        self.assertTrue(os.path.isfile(os.path.join(out, "isaac", "toaster_isaaclab.py")))
+        self.assertTrue(os.path.isfile(os.path.join(out, "behavior", "toaster_omnigibson.py")))
 
     def test_target_all_writes_all_six_targets_or_nothing(self):
         out = os.path.join(self.tmp, "all")
