@@ -12,7 +12,7 @@
 //   with MuJoCo's default bits (1/1) hits the object and droplets.
 // - the integrator is MuJoCo's default semi-implicit Euler: "implicit" is
 //   dense in MuJoCo 2.2 and 14x slower with a droplet pool (nv ~ 1000); the
-//   drives stay stable through their gain cap (mjcf_common.cc).
+//   drives stay stable through their gain cap (backends/common/lowering.cc).
 #include <algorithm>
 #include <cmath>
 #include <fstream>

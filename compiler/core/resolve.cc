@@ -187,7 +187,7 @@ void effect_defaults(Object& obj, Function& f, Diagnostics& diags) {
     case EffectType::Geometry:
       // Drive stiffness and damping, when not given, are the backend's: they
       // depend on the whole subtree the drive carries and on the timestep
-      // (backends/mujoco/mjcf_common.cc has the rule, shared with Bullet).
+      // (backends/common/lowering.cc has the rule every target shares).
       break;
     case EffectType::Illumination:
       if (!e.color) { e.color = Vec3{1, 1, 1}; mark("color"); }
