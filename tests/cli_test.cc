@@ -164,6 +164,36 @@ TEST(Cli, JsonDiagnosticsAreJsonLines) {
   EXPECT_GE(n, 1);
 }
 
+// With --diagnostics-format json every line the program writes to stderr is a
+// JSON object: warnings, progress notes, the program's own errors (an unknown
+// target, a command line CLI11 rejects, an unusable --dt), for every command.
+TEST(Cli, JsonDiagnosticsFormatPrintsOnlyJson) {
+  const fs::path out = fs::temp_directory_path() / ("efc-json-only-" + std::to_string(getpid()));
+  fs::remove_all(out);
+  const std::string toaster = q(kSource / "examples/toaster.json");
+  const std::vector<std::pair<std::string, int>> runs = {
+      {"compile " + toaster + " --target all -o " + q(out) + " --diagnostics-format json", 0},
+      {"compile " + toaster + " --target nope -o " + q(out) + " --diagnostics-format json", 2},
+      {"compile " + toaster + " --diagnostics-format=json", 2},
+      {"play " + toaster + " --profile ramp --duration 1 --dt 5 --diagnostics-format json", 2},
+      {"replay " + toaster + " --profile wobble --duration 1 --csv x.csv --diagnostics-format json", 2},
+      {"explain E9999 --diagnostics-format json", 2}};
+  for (const auto& [args, code] : runs) {
+    SCOPED_TRACE(args);
+    const Result r = efc(args);
+    EXPECT_EQ(r.exit_code, code) << r.err;
+    std::istringstream lines(r.err);
+    int n = 0;
+    for (std::string line; std::getline(lines, line); ++n) {
+      const auto j = nlohmann::json::parse(line, nullptr, false);
+      ASSERT_FALSE(j.is_discarded()) << "not JSON: " << line;
+      EXPECT_TRUE(j.contains("severity") && j.contains("message")) << line;
+    }
+    EXPECT_GE(n, 1);
+  }
+  fs::remove_all(out);
+}
+
 TEST(Cli, DumpIrShowsFilledDefaults) {
   const Result r = efc("check --dump-ir " + q(kSource / "examples/desk_lamp.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
