@@ -76,13 +76,6 @@ void PythonWriter::close() {
   if (depth_ > 0) --depth_;
 }
 
-void PythonWriter::comment(const std::string& text, size_t width) {
-  std::string clean;
-  for (char c : text) clean += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? ' ' : c;
-  const std::string prefix = indent() + "# ";
-  out_ += wrap_text(clean, width, prefix);
-}
-
 void PythonWriter::docstring(const std::string& text) {
   std::string body = docstring_body(text);
   // Indent continuation lines; a trailing backslash cannot occur (escaped).

@@ -1,7 +1,7 @@
 // One indent-aware writer for the Python every Python target generates, so
-// indentation, comments and docstrings are right by construction. Text from a
-// spec enters Python only as a string literal (text::python_string_literal) or
-// through docstring()/comment(), which escape what could end them.
+// indentation and docstrings are right by construction. Text from a spec
+// enters Python only as a string literal (text::python_string_literal) or
+// through docstring(), which escapes what could end it.
 #pragma once
 
 #include <string>
@@ -17,9 +17,6 @@ class PythonWriter {
   // `header` (ending in ':') then indents what follows, until close().
   void open(const std::string& header);
   void close();
-  // "# ..." lines; control characters become spaces (a newline would end
-  // the comment), long text is wrapped at `width` columns.
-  void comment(const std::string& text, size_t width = 88);
   // A triple-quoted docstring whose body is `text` escaped: backslashes,
   // quotes that could close it, control characters but newline, and non-ASCII
   // (as \uXXXX) cannot end it or hide in it.

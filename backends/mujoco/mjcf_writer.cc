@@ -304,7 +304,7 @@ bool generate_model_files(const Object& obj, const MjcfOptions& options, mjcf::P
     }
     files->push_back({m.file, binary_stl(*m.mesh, m.offset)});
   }
-  files->push_back({obj.name + ".xml", Writer(obj, options, plan).run()});
+  files->push_back({naming::mjcf_file(obj), Writer(obj, options, plan).run()});
   return true;
 }
 
@@ -319,7 +319,7 @@ bool write_mujoco_model(const Object& obj, const std::string& dir, const MjcfOpt
   std::vector<OutputFile> files;
   if (!generate_mujoco_model(obj, options, diags, &files) || !write_output_files(dir, files, diags))
     return false;
-  if (xml_path) *xml_path = dir + "/" + obj.name + ".xml";
+  if (xml_path) *xml_path = dir + "/" + naming::mjcf_file(obj);
   return true;
 }
 
