@@ -2,7 +2,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <map>
 #include <sstream>
 
 #include "backends/common/naming.h"
@@ -217,16 +216,11 @@ void warn_approximations(const Object& obj, const PythonTargetSpec& spec, const 
 
 }  // namespace
 
-PythonTargetBackend::PythonTargetBackend(PythonTargetSpec spec) : spec_(std::move(spec)) {}
+PythonTargetBackend::PythonTargetBackend(PythonTargetSpec spec)
+    : spec_(std::move(spec)), facts_(json::parse(embedded_text(spec_.facts()), nullptr, false)) {}
 
 bool PythonTargetBackend::generate(const Object& obj, Diagnostics& diags, std::vector<OutputFile>* files) const {
-  // target.json is compiled in: a file that does not parse is a build defect
-  // (the conformance test shows it), reported rather than thrown.
-  static thread_local std::map<std::string, json> parsed;
-  auto it = parsed.find(spec_.name);
-  if (it == parsed.end())
-    it = parsed.emplace(spec_.name, json::parse(embedded_text(spec_.facts()), nullptr, false)).first;
-  const json& facts = it->second;
+  const json& facts = facts_;
   if (facts.is_discarded() || !facts.contains("effects") || !facts.contains("springs") ||
       !facts.contains("friction")) {
     diags.error("E0900", obj.file, 0, 0, "", std::string(spec_.name) + ": the target's facts (target.json) are unreadable",

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "backends/backend.h"
 #include "backends/common/embedded.h"
 
@@ -34,6 +36,9 @@ class PythonTargetBackend : public Backend {
 
  private:
   PythonTargetSpec spec_;
+  // target.json, parsed once. It is compiled in: a file that does not parse
+  // is a build defect, which generate() reports (the conformance test shows it).
+  nlohmann::json facts_;
 };
 
 }  // namespace efc
