@@ -5,42 +5,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <set>
 
 #include "backends/common/lowering.h"
-#include "backends/common/naming.h"
-#include "backends/common/temp_dir.h"
-#include "backends/mujoco/mujoco_backend.h"
-#include "compiler/core/resolve.h"
 #include "harness/mujoco_errors.h"
+#include "harness/playback.h"
 #include "harness/plot_svg.h"
 #include "harness/render.h"
-#include "runtime/mujoco/efc_mujoco.h"
 
 namespace fs = std::filesystem;
 
 namespace efc {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-
-struct Drive {
-  int part = -1;
-  int actuator = -1;
-  int qpos = -1;
-  double lo = 0, hi = 0, q0 = 0;
-};
 
 bool write_frames_dir(const std::string& dir, Diagnostics& diags) {
   std::error_code ec;
@@ -87,98 +65,11 @@ bool write_log_csv(const PlayLog& log, const std::string& path, std::string* err
 }
 
 int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog* log) {
-  install_mujoco_handlers();
-  take_mujoco_warnings();
-  TempDir tmp("efc-play");
-  if (tmp.path().empty()) {
-    diags.error("E0900", obj.file, 0, 0, "", "cannot create a temporary folder");
-    return 2;
-  }
-  MjcfOptions mjcf;
-  mjcf.drive_receptors = true;
-  mjcf.timestep = opts.dt;
-  std::string xml_path;
-  if (!write_mujoco_model(obj, tmp.path().string(), mjcf, diags, &xml_path)) return 2;
-
-  char load_error[1024] = "";
-  std::unique_ptr<mjModel, ModelDeleter> model;
-  std::unique_ptr<mjData, DataDeleter> data;
-  try {
-    model.reset(mj_loadXML(xml_path.c_str(), nullptr, load_error, sizeof load_error));
-    if (!model) {
-      diags.error("E0901", obj.file, 0, 0, "",
-                  std::string("MuJoCo rejected the compiled model: ") + load_error,
-                  "this is a compiler defect: please report it with the spec");
-      return 1;
-    }
-    data.reset(mj_makeData(model.get()));
-  } catch (const MujocoError& e) {
-    diags.error("E0901", obj.file, 0, 0, "", e.what());
-    return 1;
-  }
-  mjModel* m = model.get();
-  mjData* d = data.get();
-  m->opt.timestep = opts.dt;
-  const int key = mj_name2id(m, mjOBJ_KEY, "initial");
-  if (key >= 0) mj_resetDataKeyframe(m, d, key);
-  mj_forward(m, d);
-
-  const std::vector<efc_mj::FunctionBinding> table = build_bindings(obj);
-  efc_mj::Controller controller(m, table.data(), static_cast<int>(table.size()));
-  if (!controller.ok()) {
-    diags.error("E0901", obj.file, 0, 0, "", "binding the templates failed: " + controller.error());
-    return 1;
-  }
-  // The receptors the profile moves, through their efc_drive_<part> actuators.
-  std::vector<Drive> drives;
-  for (int pi : lowering::profile_driven_receptors(obj)) {
-    const Part& p = obj.parts[pi];
-    Drive dr;
-    dr.part = pi;
-    dr.actuator = mj_name2id(m, mjOBJ_ACTUATOR, naming::mjcf_receptor_drive(p.name).c_str());
-    const int jid = mj_name2id(m, mjOBJ_JOINT, p.name.c_str());
-    if (dr.actuator < 0 || jid < 0) {
-      diags.error("E0901", obj.file, 0, 0, "", "compiled model has no drive for receptor '" + p.name + "'");
-      return 1;
-    }
-    dr.qpos = m->jnt_qposadr[jid];
-    if (p.joint->has_range) {
-      dr.lo = p.joint->lo;
-      dr.hi = p.joint->hi;
-    } else {  // continuous receptors sweep one turn
-      dr.lo = 0;
-      dr.hi = 2 * kPi;
-    }
-    dr.q0 = d->qpos[dr.qpos];
-    drives.push_back(dr);
-    if (opts.profile.kind == Profile::Kind::Csv && !opts.profile.csv_parts.count(p.name))
-      diags.warning("W0902", opts.profile.csv_path, 1, 1, "",
-                    "profile CSV has no column for receptor '" + p.name + "'; it holds its initial position");
-  }
-  // Every receptor starts where its profile starts (ramp, sweep and press:N at
-  // the lower limit; hold:V at the initial position; csv:FILE at its first
-  // row), so the first row (t = 0) and the templates' initial state see the
-  // profile's start, not the spec's initial position: a receptor that jumped
-  // there during the first steps would cross a threshold at the initial
-  // position twice.
-  for (const Drive& dr : drives) {
-    const Joint& j = *obj.parts[dr.part].joint;
-    double q = profile_target(opts.profile, obj.parts[dr.part].name, dr.lo, dr.hi, dr.q0, 0.0, opts.duration);
-    if (j.has_range) q = std::clamp(q, j.lo, j.hi);
-    d->qpos[dr.qpos] = q;
-    d->ctrl[dr.actuator] = q;
-  }
-  mj_forward(m, d);
-  controller.reset(m, d);
-
-  if (opts.profile.kind == Profile::Kind::Hold && opts.profile.hold_at == Profile::HoldAt::Value) {
-    for (const Drive& dr : drives)
-      if (opts.profile.hold_value < dr.lo || opts.profile.hold_value > dr.hi)
-        diags.warning("W0903", obj.file, 0, 0, "",
-                      "hold value " + std::to_string(opts.profile.hold_value) +
-                          " is outside the range of receptor '" + obj.parts[dr.part].name +
-                          "'; its joint limit stops it");
-  }
+  Playback run;
+  if (const int rc = run.open(obj, opts.profile, opts.duration, opts.dt, diags)) return rc;
+  mjModel* m = run.model();
+  mjData* d = run.data();
+  const efc_mj::Controller& controller = run.controller();
 
   log->columns = {"t"};
   for (int i = 0; i < controller.count(); ++i) {
@@ -205,10 +96,7 @@ int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog
   try {
     for (long k = 0; k <= steps; ++k) {
       const double t = k * opts.dt;  // exact grid, not the accumulated d->time
-      for (const Drive& dr : drives)
-        d->ctrl[dr.actuator] = profile_target(opts.profile, obj.parts[dr.part].name, dr.lo, dr.hi,
-                                              dr.q0, t, opts.duration);
-      controller.step(m, d);
+      run.control(t);
       std::vector<double> row{t};
       for (int i = 0; i < controller.count(); ++i) {
         const efc_mj::FunctionReadout& r = controller.readout(i);
@@ -226,7 +114,7 @@ int play(const Object& obj, const PlayOptions& opts, Diagnostics& diags, PlayLog
         next_frame += frame_period;
       }
       if (k == steps) break;
-      mj_step(m, d);
+      run.advance();
       if (opts.progress && steps > 0) {
         const int percent = static_cast<int>(100 * k / steps);
         if (percent / 10 != last_percent / 10) {

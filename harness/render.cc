@@ -151,6 +151,94 @@ bool OffscreenRenderer::render_rgb(const mjModel* m, mjData* d, std::vector<unsi
   return true;
 }
 
+bool OffscreenRenderer::render_views(const mjModel* m, mjData* d, int camera_id, bool want_depth,
+                                     bool want_segmentation, Views* out) {
+  if (!ok_) {
+    if (error_.empty()) error_ = "renderer not initialised";
+    return false;
+  }
+  const OsMesaApi& gl = *osmesa_api_;
+  OSMesaContext ctx = static_cast<OSMesaContext>(osmesa_);
+  if (gl.get_current_context() != ctx &&
+      !gl.make_current(ctx, osbuf_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
+    error_ = "OSMesaMakeCurrent failed";
+    return false;
+  }
+  const size_t n = static_cast<size_t>(width_) * height_;
+  std::vector<unsigned char> raw(n * 3), ids;
+  std::vector<float> zbuf;
+  mjvCamera cam;
+  mjv_defaultCamera(&cam);
+  cam.type = mjCAMERA_FIXED;
+  cam.fixedcamid = camera_id;
+  try {
+    ErrorGuard guard;
+    mjrRect viewport = {0, 0, width_, height_};
+    mjr_setBuffer(mjFB_OFFSCREEN, &con_);
+    mjv_updateScene(m, d, &opt_, nullptr, &cam, mjCAT_ALL, &scn_);
+    if (want_depth) zbuf.resize(n);
+    mjr_render(viewport, &scn_, &con_);
+    mjr_readPixels(raw.data(), want_depth ? zbuf.data() : nullptr, viewport, &con_);
+    if (want_segmentation) {
+      ids.resize(n * 3);
+      scn_.flags[mjRND_SEGMENT] = 1;
+      scn_.flags[mjRND_IDCOLOR] = 1;
+      mjr_render(viewport, &scn_, &con_);
+      scn_.flags[mjRND_SEGMENT] = 0;
+      scn_.flags[mjRND_IDCOLOR] = 0;
+      mjr_readPixels(ids.data(), nullptr, viewport, &con_);
+    }
+  } catch (const std::exception& e) {
+    scn_.flags[mjRND_SEGMENT] = 0;
+    scn_.flags[mjRND_IDCOLOR] = 0;
+    error_ = std::string("MuJoCo rendering failed: ") + e.what();
+    return false;
+  }
+  out->width = width_;
+  out->height = height_;
+  out->rgb.resize(n * 3);
+  const size_t row = static_cast<size_t>(width_) * 3;
+  for (int y = 0; y < height_; ++y)  // OpenGL rows are bottom-first
+    std::memcpy(out->rgb.data() + static_cast<size_t>(y) * row,
+                raw.data() + static_cast<size_t>(height_ - 1 - y) * row, row);
+  out->depth.clear();
+  if (want_depth) {
+    // The depth buffer holds z in [0, 1] of a standard perspective projection
+    // between MuJoCo's near and far planes; invert it to metres.
+    const double extent = m->stat.extent;
+    const double znear = m->vis.map.znear * extent, zfar = m->vis.map.zfar * extent;
+    out->depth.resize(n);
+    for (int y = 0; y < height_; ++y) {
+      const float* src = zbuf.data() + static_cast<size_t>(height_ - 1 - y) * width_;
+      float* dst = out->depth.data() + static_cast<size_t>(y) * width_;
+      for (int x = 0; x < width_; ++x) {
+        const double z = src[x];
+        dst[x] = z >= 1.0 ? 0.0f : static_cast<float>(znear / (1.0 - z * (1.0 - znear / zfar)));
+      }
+    }
+  }
+  out->geom.clear();
+  if (want_segmentation) {
+    // Each pixel's colour is the scene geom's segid + 1 (little-endian RGB);
+    // the scene geom names the model geom it draws.
+    std::vector<int> model_geom(static_cast<size_t>(scn_.ngeom) + 1, -1);  // segid + 1 -> geom
+    for (int i = 0; i < scn_.ngeom; ++i) {
+      const mjvGeom& g = scn_.geoms[i];
+      if (g.segid >= 0 && g.segid < scn_.ngeom && g.objtype == mjOBJ_GEOM) model_geom[g.segid + 1] = g.objid;
+    }
+    out->geom.assign(n, -1);
+    for (int y = 0; y < height_; ++y) {
+      const unsigned char* src = ids.data() + static_cast<size_t>(height_ - 1 - y) * row;
+      int* dst = out->geom.data() + static_cast<size_t>(y) * width_;
+      for (int x = 0; x < width_; ++x) {
+        const int id = src[3 * x] | (src[3 * x + 1] << 8) | (src[3 * x + 2] << 16);
+        if (id > 0 && id <= scn_.ngeom) dst[x] = model_geom[id];
+      }
+    }
+  }
+  return true;
+}
+
 bool OffscreenRenderer::render_png(const mjModel* m, mjData* d, const std::string& path) {
   std::vector<unsigned char> rgb;
   int w = 0, h = 0;

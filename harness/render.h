@@ -37,6 +37,19 @@ class OffscreenRenderer {
   bool render_rgb(const mjModel* m, mjData* d, std::vector<unsigned char>* rgb, int* w,
                   int* h);
 
+  // RGB, metric depth and segmentation from one camera of the model (`efc
+  // synth`). The scene is updated once; segmentation is a second pass with
+  // MuJoCo's id colours. Exact only without multisampling: build the renderer
+  // after setting m->vis.quality.offsamples = 0, or edges blend ids.
+  struct Views {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;  // width*height*3, top row first
+    std::vector<float> depth;        // metres along the optical axis; 0 = nothing hit
+    std::vector<int> geom;           // model geom id per pixel; -1 = background
+  };
+  bool render_views(const mjModel* m, mjData* d, int camera_id, bool depth, bool segmentation,
+                    Views* out);
+
  private:
   bool ok_ = false;
   std::string error_;
