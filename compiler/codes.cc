@@ -6,6 +6,7 @@
 //   E02xx  parts and joints: the part tree, joint values, geometry sizes
 //   E03xx  functions: references, the function graph, mappings, effects
 //   E09xx  backends and output
+//   E10xx  sequence folders (shared/spec/sequence.md)
 //   Wxxxx  warnings, numbered like the errors of the same area
 #include <algorithm>
 #include <cctype>
@@ -370,6 +371,73 @@ const std::vector<CodeInfo>& all_codes() {
        "efc parity builds the Bullet target with cmake and runs it; the build or the\n"
        "run failed. The tail of its log is printed. Exit code 2.\n"
        "Fix: install what the log says is missing (scripts/setup installs Bullet)."},
+      // ---------------------------------------------------------------- E10xx
+      {"E1001", "not a sequence folder",
+       "A sequence (shared/spec/sequence.md) is a folder holding meta.json and rgb/.\n"
+       "The path does not exist, is a file, is an empty folder, or has no readable\n"
+       "meta.json.\n"
+       "  efc check-sequence recordings/kitchen     (an empty folder)\n"
+       "Fix: pass the sequence folder itself (the one with meta.json in it)."},
+      {"E1002", "meta.json is invalid",
+       "meta.json parsed as JSON but breaks a rule of grammar/sequence-meta.schema.json:\n"
+       "a wrong type, a missing required key (efc_sequence, fps, width, height,\n"
+       "intrinsics, frames), a size or fps that is not positive, an unknown role in\n"
+       "\"parts\", a function naming a part \"parts\" does not list, or an unknown key\n"
+       "(keys of your own start with \"x-\"). The position and pointer name the value.\n"
+       "  \"width\": \"640\"            <- must be an integer\n"
+       "Fix: correct the value; JSON syntax errors are E0003 as for specs."},
+      {"E1003", "frame file missing",
+       "meta.json says \"frames\": N, so rgb/ (and depth/ and each masks/<name>/ when\n"
+       "they exist) must hold 000000.png to the file of frame N-1. One is missing, or\n"
+       "there is no rgb/ folder at all.\n"
+       "  SEQ/rgb/000002.png: error[E1003]: rgb frame 2 is missing\n"
+       "Fix: supply the frame, or lower \"frames\" if the recording is shorter."},
+      {"E1004", "frame of the wrong size",
+       "A frame's width and height differ from meta.json's; the intrinsics are for\n"
+       "that size, so the frame cannot be used as it is.\n"
+       "  SEQ/depth/000123.png: depth frame is 320x240, meta.json says 640x480\n"
+       "Fix: resize the frame (depth: nearest neighbour, never interpolate), or\n"
+       "correct width, height and the intrinsics in meta.json."},
+      {"E1005", "frame unreadable or of the wrong kind",
+       "A frame is not a PNG, is truncated or corrupt, or is of another pixel kind than\n"
+       "its folder holds: rgb/ 8-bit RGB, depth/ 16-bit grey, masks/ 8-bit grey. Nothing\n"
+       "is converted silently (an RGBA or palette image may hide a wrong export).\n"
+       "  SEQ/masks/hand/000000.png: mask frame is 8-bit RGB, expected 8-bit grey\n"
+       "Fix: re-export the frame in the expected kind (e.g. `convert in.png -colorspace\n"
+       "Gray -depth 8 out.png` for a mask)."},
+      {"E1006", "poses.txt or hands.txt line invalid",
+       "A data line of poses.txt needs 8 numbers (t tx ty tz qx qy qz qw, TUM), one of\n"
+       "hands.txt 4 (t x y z, or t nan nan nan when no hand is seen). The line has the\n"
+       "wrong count, a token that is not a number, a NaN or infinity in a pose, only\n"
+       "some of x y z nan, a quaternion whose length is not 1 (within 0.001), or a\n"
+       "time that is not after the previous line's.\n"
+       "  0.1 0 0 1 0 0 0 2          <- quaternion of length 2\n"
+       "Fix: correct the line; '#' starts a comment line."},
+      {"E1007", "count does not match \"frames\"",
+       "meta.json says how many frames the sequence has; poses.txt, hands.txt and\n"
+       "truth/*.csv need one line (row) per frame, and no frame folder may hold a\n"
+       "numbered frame at or past that count.\n"
+       "  SEQ/poses.txt:299:1: error[E1007]: has 299 pose lines, meta.json says 300 frames\n"
+       "Fix: add or remove lines (frames), or correct \"frames\"."},
+      {"E1008", "truth/ file invalid",
+       "A ground-truth file is malformed: truth/spec.json is not a JSON object,\n"
+       "truth/object_pose.json lacks \"object_to_world\" (16 numbers, row-major, last\n"
+       "row 0 0 0 1), or truth/joints.csv / effects.csv lack the header \"t,...\", have\n"
+       "a duplicate column, a row of the wrong width, a field that is not a finite\n"
+       "number, or times not increasing.\n"
+       "  t,handle\n  0,0.1\n  0.033,abc       <- not a number\n"
+       "Fix: regenerate truth/ (efc synth writes it), or correct the file."},
+      {"E1009", "unknown mask name",
+       "A folder masks/<name>/ must be named after a part that meta.json's \"parts\"\n"
+       "lists, or a role: receptor, effector, object, hand (any name is accepted when\n"
+       "\"parts\" is not given). Names are letters, digits and '_'.\n"
+       "  masks/handel/   with \"parts\": {\"handle\": \"receptor\"}\n"
+       "Fix: rename the folder, or add the part to \"parts\"."},
+      {"E1010", "the spec cannot be filmed by efc synth",
+       "efc synth writes one mask folder per part and one for the hand (masks/hand/),\n"
+       "so a part named 'hand' would share the hand's folder.\n"
+       "  {\"name\": \"hand\", ...}   in \"parts\"\n"
+       "Fix: rename the part (e.g. 'hand_wheel')."},
       // ---------------------------------------------------------------- warnings
       {"W0103", "mesh is not closed",
        "The mesh has holes or edges not shared by exactly two triangles, so its\n"
