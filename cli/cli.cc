@@ -92,6 +92,35 @@ int run_cli(int argc, char** argv) {
   replayc->add_option("--csv", replay.csv, "write the log: t, F.s_R, F.s_E, F.measured")->required();
   add_common(replayc, &common, &format);
 
+  SynthArgs synth;
+  CLI::App* synthc = app.add_subcommand(
+      "synth", "render a synthetic egocentric RGB-D sequence of SPEC being operated, with ground truth");
+  synthc->add_option("SPEC", synth.spec, "spec file")->required();
+  synthc->add_option("-o,--output", synth.output, "sequence folder to write")->required();
+  synthc->add_option("--frames", synth.frames, "number of frames (default 150)");
+  synthc->add_option("--fps", synth.fps, "frames per second (default 30)");
+  synthc->add_option("--width", synth.width, "image width in pixels (default 640)");
+  synthc->add_option("--height", synth.height, "image height in pixels (default 480)");
+  synthc->add_option("--profile", synth.profile, "how the hand moves each receptor: ramp, sweep (default), press:N, hold:V");
+  synthc->add_option("--noise", synth.noise, "none, mild (default) or realistic");
+  synthc->add_option("--seed", synth.seed, "seed of every random choice (default 0)");
+  synthc->add_flag("--preview", synth.preview, "also write SEQ/preview.png: a frame, its depth and masks side by side");
+  add_common(synthc, &common, &format);
+
+  SynthSuiteArgs suite;
+  CLI::App* suitec = app.add_subcommand(
+      "synth-suite", "render N varied synthetic sequences (examples and generated objects) and DIR/index.json");
+  suitec->add_option("-o,--output", suite.output, "suite folder to write")->required();
+  suitec->add_option("--count", suite.count, "number of sequences")->required();
+  suitec->add_option("--seed", suite.seed, "seed of the plan (default 0)");
+  suitec->add_option("--noise", suite.noise, "none, mild or realistic for every sequence (default: drawn per sequence)");
+  suitec->add_option("--examples", suite.examples, "folder of example specs to vary (default: ./examples when present)");
+  suitec->add_option("--frames", suite.synth.frames, "frames per sequence (default 150)");
+  suitec->add_option("--fps", suite.synth.fps, "frames per second (default 30)");
+  suitec->add_option("--width", suite.synth.width, "image width in pixels (default 640)");
+  suitec->add_option("--height", suite.synth.height, "image height in pixels (default 480)");
+  add_common(suitec, &common, &format);
+
   std::vector<std::string> fmt_files;
   bool fmt_check = false;
   CLI::App* fmt = app.add_subcommand("fmt", "rewrite .efc (and .json) specs in canonical form");
@@ -105,6 +134,12 @@ int run_cli(int argc, char** argv) {
   convert->add_option("IN", convert_in, "input spec (.json or .efc)")->required();
   convert->add_option("-o,--output", convert_out, "output file (.efc or .json)")->required();
   add_common(convert, &common, &format);
+
+  std::vector<std::string> seq_dirs;
+  CLI::App* check_seq = app.add_subcommand(
+      "check-sequence", "validate sequence folders (shared/spec/sequence.md)");
+  check_seq->add_option("SEQ", seq_dirs, "sequence folders")->required();
+  add_common(check_seq, &common, &format);
 
   std::string code;
   bool list = false;
@@ -135,6 +170,9 @@ int run_cli(int argc, char** argv) {
   if (*explain) return cmd_explain(report, code, list);
   if (*fmt) return cmd_fmt(report, fmt_files, fmt_check);
   if (*convert) return cmd_convert(report, convert_in, convert_out);
+  if (*check_seq) return cmd_check_sequence(report, seq_dirs);
+  if (*synthc) return cmd_synth(report, synth);
+  if (*suitec) return cmd_synth_suite(report, suite);
   return kExitUsage;
 }
 

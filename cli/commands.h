@@ -3,12 +3,14 @@
 // process exit code.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/report.h"
 #include "runtime/efc_profile.h"
+#include "synth/synth.h"
 
 namespace efc {
 
@@ -20,6 +22,7 @@ int cmd_compile(Report& report, const std::vector<std::string>& specs,
 int cmd_explain(Report& report, const std::string& code, bool list);
 int cmd_fmt(Report& report, const std::vector<std::string>& files, bool check_only);
 int cmd_convert(Report& report, const std::string& in, const std::string& out);
+int cmd_check_sequence(Report& report, const std::vector<std::string>& dirs);
 
 struct PlayArgs {
   std::string spec, profile, csv, render, plot;
@@ -38,6 +41,28 @@ struct ReplayArgs {
   double duration = 0, dt = 0.002;
 };
 int cmd_replay(Report& report, const ReplayArgs& args);
+
+struct SynthArgs {
+  std::string spec, output, profile = "sweep", noise = "mild";
+  int frames = 150, width = 640, height = 480;
+  double fps = 30;
+  uint64_t seed = 0;
+  bool preview = false;
+};
+int cmd_synth(Report& report, const SynthArgs& args);
+
+struct SynthSuiteArgs {
+  std::string output, noise, examples;  // noise "" = drawn per sequence
+  int count = 0;
+  uint64_t seed = 0;
+  SynthArgs synth;  // frames, fps, width, height
+};
+int cmd_synth_suite(Report& report, const SynthSuiteArgs& args);
+// Shared by synth and synth-suite (cli/synth.cc): 0, or the exit code after
+// reporting a bad --frames, --fps, --width, --height or --noise.
+int check_synth_options(Report& report, const SynthArgs& args);
+// The options of one synth run (progress lines on a terminal).
+synth::SynthOptions synth_options(Report& report, const SynthArgs& args);
 
 // Shared by play, parity and replay (run_options.cc): checks --duration and
 // --dt (a positive duration of at most 1e5 s, 0 < dt <= 0.1 s, dt <= duration,

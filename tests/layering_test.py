@@ -9,6 +9,9 @@
                harness, eval or the CLI: URDF, Bullet and the Python targets
                must build without MuJoCo
     harness/, eval/ never include the CLI
+    sequence/  the recording format: no simulator, backend, harness or CLI
+    synth/     never includes the CLI or eval; synth/image and synth/suite
+               (pixels and plans) use no simulator
 
 Usage: layering_test.py SOURCE_DIR. Exit 1 listing every violation.
 """
@@ -28,6 +31,13 @@ RULES = [
     ("backends", re.compile(r"^(cli|eval)/"), "backends do not know the CLI or eval"),
     ("harness", re.compile(r"^(cli|eval)/"), "the harness does not know the CLI or eval"),
     ("eval", re.compile(r"^cli/"), "eval does not know the CLI"),
+    ("sequence", re.compile(r"^(backends|harness|cli|eval|synth|runtime)/|^mujoco/|^GL/"),
+     "the sequence format knows no simulator, backend, harness or CLI"),
+    ("synth", re.compile(r"^(cli|eval)/"), "synth does not know the CLI or eval"),
+    ("synth/image", re.compile(r"^(backends|harness|runtime|synth/(?!image/|suite/))|^mujoco/|^GL/"),
+     "synth/image is pixels only: no simulator"),
+    ("synth/suite", re.compile(r"^(backends|harness|runtime|sequence|synth/(?!suite/))|^mujoco/|^GL/"),
+     "synth/suite plans specs: no simulator"),
 ]
 
 
