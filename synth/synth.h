@@ -35,7 +35,7 @@ struct SynthOptions {
   // user's file); its meshes are copied beside it.
   std::string spec_json;
   double dt = 0.002;     // physics step (s), as efc play
-  int png_compression = 2;  // zlib level of every PNG written
+  int png_compression = 1;  // zlib level of every PNG written
   int threads = 0;       // encoding threads; 0 = one per core
   // Progress lines (frames done, rate, time left); none when empty.
   std::function<void(const std::string&)> progress;
