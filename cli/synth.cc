@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/spec_text.h"
+#include "synth/image/rng.h"
 #include "synth/synth.h"
 
 namespace efc {
@@ -32,6 +33,12 @@ synth::SynthOptions synth_options(Report& report, const SynthArgs& args) {
   opts.seed = args.seed;
   opts.preview = args.preview;
   synth::parse_noise_level(args.noise, &opts.knobs.noise);
+  // Where the object stands comes from the seed, so the world frame is never
+  // the object's own (an estimator must find the object's pose).
+  synth::Rng place(synth::stream_seed(args.seed, 0x706c616365));  // "place"
+  opts.knobs.object_yaw = place.uniform(-0.5, 0.5);
+  opts.knobs.object_x = place.uniform(-0.1, 0.1);
+  opts.knobs.object_y = place.uniform(-0.1, 0.1);
   if (isatty(2)) opts.progress = [&report](const std::string& line) { report.note(line); };
   return opts;
 }

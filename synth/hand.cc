@@ -63,8 +63,10 @@ std::string hand_body_xml(const SceneKnobs& knobs, const Vector3d& parked) {
   geom("type=\"capsule\" size=\"" + num(0.026 * s) + "\" fromto=\"" + p(0, -0.004, -0.125) + " " +
            p(0, -0.02, -0.17) + "\"",
        skin);
+  // The sleeve runs on to the shoulder, below and behind the eye: it leaves
+  // the picture at its edge instead of ending in mid-air.
   geom("type=\"capsule\" size=\"" + num(0.034 * s) + "\" fromto=\"" + p(0, -0.02, -0.18) + " " +
-           p(0, -0.05, -0.46) + "\"",
+           p(0, -0.06, -0.80) + "\"",
        sleeve);
   os << "</body>";
   return os.str();
@@ -145,8 +147,11 @@ Grasp plan_grasp(const Object& obj, int part, const mjModel* m, const mjData* d,
   // The arm comes from the wearer's shoulder (below and right of the eye):
   // fingers point from there to the grasp point, bent a little into the
   // surface; the palm's width stays level.
+  // A knob is held on its face with the fingers along its axis, so turning
+  // it rolls the hand about the forearm instead of swinging the arm round.
   const Vector3d shoulder = eye + Vector3d(0, 0, -0.45);
-  Vector3d z = (0.75 * (point_now - shoulder).normalized() - 0.25 * normal_now).normalized();
+  Vector3d z = knob ? Vector3d(-normal_now)
+                    : Vector3d((0.75 * (point_now - shoulder).normalized() - 0.25 * normal_now).normalized());
   Vector3d x = z.cross(Vector3d::UnitZ());
   if (x.norm() < 1e-3) x = Vector3d::UnitX();
   x.normalize();

@@ -93,14 +93,12 @@ void add_textures(tinyxml2::XMLElement* asset, const RoomStyle& s) {
     m->SetAttribute("texuniform", "true");
     m->SetAttribute("specular", num(specular).c_str());
   };
-  // Tiles, speckled paint and speckled stone: texture everywhere, so neither
+  // Tiles and speckled paint: texture on the floor and walls, so neither
   // colour nor depth edges come only from the object.
   texture("efc_synth_floor_tex", "checker", s.floor1, s.floor2, "edge", 0);
   texture("efc_synth_wall_tex", "flat", s.wall, s.wall, "random", 0.04);
-  texture("efc_synth_counter_tex", "flat", s.counter, s.counter, "random", 0.08);
   material("efc_synth_floor", "efc_synth_floor_tex", "2 2", 0.1);
   material("efc_synth_wall", "efc_synth_wall_tex", "3 3", 0.05);
-  material("efc_synth_counter", "efc_synth_counter_tex", "4 4", 0.3);
 }
 
 }  // namespace
@@ -229,7 +227,10 @@ bool build_scene_mjcf(const Object& obj, const Layout& layout, const SceneKnobs&
     tinyxml2::XMLElement* top = visual_geom(world, "efc_synth_room_counter", "plane",
                                             num(half_w) + " " + num(0.5 * depth) + " 0.02",
                                             Vector3d(c.x(), wall_y - 0.5 * depth, support - 0.0005));
-    top->SetAttribute("material", "efc_synth_counter");
+    // Untextured: MuJoCo's textured materials hide the per-vertex pool of a
+    // lamp's light, and a lamp lighting the worktop is what illumination
+    // effects should show.
+    top->SetAttribute("rgba", rgba(style.counter).c_str());
     tinyxml2::XMLElement* cab = visual_geom(world, "efc_synth_room_cabinet", "box",
                                             num(half_w) + " " + num(0.5 * depth) + " " +
                                                 num(0.5 * (support - 0.001 - floor_z)),
