@@ -308,6 +308,30 @@ TEST_F(SynthSequence, TheSequenceChecksAndReadsBackUnchanged) {
   EXPECT_GT(seen, 10);
 }
 
+// The head camera keeps the object in the picture: in every frame some of
+// it is seen, and its centre stays inside the middle 80% of the image.
+TEST_F(SynthSequence, TheObjectStaysInView) {
+  seq::Sequence s;
+  Diagnostics diags;
+  ASSERT_TRUE(s.open(*stove_, diags));
+  for (int f = 0; f < s.meta().frames; ++f) {
+    double n = 0, sx = 0, sy = 0;
+    for (const auto& [part, role] : s.meta().parts) {
+      if (role == "hand") continue;
+      seq::Image8 mask;
+      ASSERT_TRUE(s.read_mask(part, f, diags, &mask));
+      for (int y = 0; y < mask.height; ++y)
+        for (int x = 0; x < mask.width; ++x)
+          if (mask.pixels[static_cast<size_t>(y) * mask.width + x]) n += 1, sx += x, sy += y;
+    }
+    ASSERT_GT(n, 0.01 * s.meta().width * s.meta().height) << "frame " << f;
+    EXPECT_GT(sx / n, 0.1 * s.meta().width) << f;
+    EXPECT_LT(sx / n, 0.9 * s.meta().width) << f;
+    EXPECT_GT(sy / n, 0.1 * s.meta().height) << f;
+    EXPECT_LT(sy / n, 0.9 * s.meta().height) << f;
+  }
+}
+
 std::map<std::string, std::string> folder_bytes(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& e : fs::recursive_directory_iterator(dir))
