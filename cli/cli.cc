@@ -17,6 +17,14 @@ void add_common(CLI::App* cmd, CommonOptions* common, std::string* format) {
                 "let mesh paths be absolute (they may never leave the spec's folder otherwise)");
 }
 
+// What synth and synth-suite film: how many frames, how fast, how large.
+void add_frame_options(CLI::App* cmd, SynthArgs* args) {
+  cmd->add_option("--frames", args->frames, "frames per sequence (default 150)");
+  cmd->add_option("--fps", args->fps, "frames per second (default 30)");
+  cmd->add_option("--width", args->width, "image width in pixels (default 640)");
+  cmd->add_option("--height", args->height, "image height in pixels (default 480)");
+}
+
 // Whether argv asks for JSON diagnostics, read before parsing: a command line
 // CLI11 rejects must still be reported as JSON when JSON was asked for.
 bool wants_json(int argc, char** argv) {
@@ -97,10 +105,7 @@ int run_cli(int argc, char** argv) {
       "synth", "render a synthetic egocentric RGB-D sequence of SPEC being operated, with ground truth");
   synthc->add_option("SPEC", synth.spec, "spec file")->required();
   synthc->add_option("-o,--output", synth.output, "sequence folder to write")->required();
-  synthc->add_option("--frames", synth.frames, "number of frames (default 150)");
-  synthc->add_option("--fps", synth.fps, "frames per second (default 30)");
-  synthc->add_option("--width", synth.width, "image width in pixels (default 640)");
-  synthc->add_option("--height", synth.height, "image height in pixels (default 480)");
+  add_frame_options(synthc, &synth);
   synthc->add_option("--profile", synth.profile, "how the hand moves each receptor: ramp, sweep (default), press:N, hold:V");
   synthc->add_option("--noise", synth.noise, "none, mild (default) or realistic");
   synthc->add_option("--seed", synth.seed, "seed of every random choice (default 0)");
@@ -115,10 +120,7 @@ int run_cli(int argc, char** argv) {
   suitec->add_option("--seed", suite.seed, "seed of the plan (default 0)");
   suitec->add_option("--noise", suite.noise, "none, mild or realistic for every sequence (default: drawn per sequence)");
   suitec->add_option("--examples", suite.examples, "folder of example specs to vary (default: ./examples when present)");
-  suitec->add_option("--frames", suite.synth.frames, "frames per sequence (default 150)");
-  suitec->add_option("--fps", suite.synth.fps, "frames per second (default 30)");
-  suitec->add_option("--width", suite.synth.width, "image width in pixels (default 640)");
-  suitec->add_option("--height", suite.synth.height, "image height in pixels (default 480)");
+  add_frame_options(suitec, &suite.synth);
   add_common(suitec, &common, &format);
 
   std::vector<std::string> fmt_files;

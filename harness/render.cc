@@ -1,7 +1,5 @@
 #include "harness/render.h"
 
-#include <png.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -9,6 +7,7 @@
 
 #include "backends/common/naming.h"
 #include "harness/osmesa_loader.h"
+#include "sequence/sequence.h"
 
 namespace efc {
 namespace {
@@ -246,55 +245,21 @@ bool OffscreenRenderer::render_png(const mjModel* m, mjData* d, const std::strin
   return write_png_rgb(path, rgb.data(), w, h, &error_);
 }
 
-namespace {
-
-// Kept free of C++ objects with destructors between setjmp and longjmp.
-bool write_png_impl(FILE* fp, const unsigned char* rgb, int width, int height,
-                    png_bytep* rows) {
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  if (!png) return false;
-  png_infop info = png_create_info_struct(png);
-  if (!info) {
-    png_destroy_write_struct(&png, nullptr);
-    return false;
-  }
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    return false;
-  }
-  png_init_io(png, fp);
-  png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  for (int y = 0; y < height; ++y)
-    rows[y] = const_cast<png_bytep>(rgb + static_cast<size_t>(y) * width * 3);
-  png_write_info(png, info);
-  png_write_image(png, rows);
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  return true;
-}
-
-}  // namespace
-
 bool write_png_rgb(const std::string& path, const unsigned char* rgb, int width, int height,
                    std::string* error) {
   if (!rgb || width <= 0 || height <= 0) {
     if (error) *error = "write_png_rgb: empty image";
     return false;
   }
-  FILE* fp = std::fopen(path.c_str(), "wb");
-  if (!fp) {
-    if (error) *error = "cannot open " + path + " for writing";
+  seq::Image8 img;
+  img.width = width, img.height = height, img.channels = 3;
+  img.pixels.assign(rgb, rgb + static_cast<size_t>(width) * height * 3);
+  std::string why;
+  if (!seq::write_png_rgb(path, img, &why)) {
+    if (error) *error = why;
     return false;
   }
-  std::vector<png_bytep> rows(static_cast<size_t>(height));
-  bool ok = write_png_impl(fp, rgb, width, height, rows.data());
-  if (std::fclose(fp) != 0) ok = false;
-  if (!ok) {
-    if (error) *error = "failed to write PNG " + path;
-    std::remove(path.c_str());
-  }
-  return ok;
+  return true;
 }
 
 }  // namespace efc

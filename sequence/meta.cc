@@ -20,6 +20,7 @@ namespace {
 
 using nlohmann::json;
 using Keys = std::vector<std::string>;
+using frontend::json_kind_phrase;
 
 constexpr const char* kCode = "E1002";
 const Keys kTopKeys = {"efc_sequence", "fps",    "width",    "height",    "intrinsics", "depth_scale",
@@ -27,17 +28,6 @@ const Keys kTopKeys = {"efc_sequence", "fps",    "width",    "height",    "intri
 const Keys kIntrinsicsKeys = {"fx", "fy", "cx", "cy"};
 const Keys kFunctionKeys = {"name", "receptor", "effector"};
 const Keys kRoles = {"receptor", "effector", "receptor+effector", "object", "hand"};
-
-std::string a_kind(const json& v) {
-  switch (v.type()) {
-    case json::value_t::object: return "an object";
-    case json::value_t::array: return "an array";
-    case json::value_t::string: return "a string";
-    case json::value_t::boolean: return "a boolean";
-    case json::value_t::null: return "null";
-    default: return "a number";
-  }
-}
 
 std::string last_token(const std::string& ptr) { return ptr.substr(ptr.rfind('/') + 1); }
 
@@ -53,7 +43,7 @@ class MetaReader {
 
   void read(const json& doc, Meta* out) {
     if (!doc.is_object()) {
-      err("", "meta.json must be a JSON object, got " + a_kind(doc),
+      err("", "meta.json must be a JSON object, got " + json_kind_phrase(doc),
           "it looks like {\"efc_sequence\": 1, \"fps\": 30, \"width\": 640, ...}");
       return;
     }
@@ -120,7 +110,7 @@ class MetaReader {
     diags_.error(kCode, file_, p.first, p.second, kp, "unknown key '" + key + "' in " + where, hint);
   }
   void type_err(const std::string& ptr, const json& v, const std::string& want) {
-    err(ptr, "'" + last_token(ptr) + "' must be " + want + ", got " + a_kind(v));
+    err(ptr, "'" + last_token(ptr) + "' must be " + want + ", got " + json_kind_phrase(v));
   }
   const json* get(const json& obj, const std::string& ptr, const char* key, bool required) {
     auto it = obj.find(key);

@@ -39,6 +39,10 @@ size_t first_invalid_utf8(std::string_view s);
 // "/a" + "b/c" -> "/a/b~1c" (RFC 6901 escaping).
 std::string pointer_append(const std::string& base, std::string_view token);
 
+// What a value is, for messages: "an object", "an array", "a string", "a
+// boolean", "null", "a number".
+std::string json_kind_phrase(const nlohmann::json& v);
+
 // Errors E0002 (empty), E0003 (syntax), E0004 (not UTF-8), E0005 (too deep),
 // E0006 (number overflow), E0007 (duplicate key) go to diags. Returns nullopt
 // when the text is not a usable JSON document (duplicate keys still return it,

@@ -17,17 +17,6 @@ const Keys kMappingTypes = {"binary", "step", "linear", "cumulative"};
 const Keys kEffectTypes = {"geometry", "illumination", "temperature", "fluid", "airflow"};
 const Keys kGeomKinds = {"mesh", "box", "cylinder", "sphere", "compound"};
 
-std::string a_kind(const json& v) {
-  switch (v.type()) {
-    case json::value_t::object: return "an object";
-    case json::value_t::array: return "an array";
-    case json::value_t::string: return "a string";
-    case json::value_t::boolean: return "a boolean";
-    case json::value_t::null: return "null";
-    default: return "a number";
-  }
-}
-
 std::string join(const Keys& k) {
   std::string s;
   for (const auto& x : k) s += (s.empty() ? "" : ", ") + x;
@@ -54,7 +43,7 @@ class Builder {
   void top(const json& doc) {
     obj_.loc = loc("");
     if (!doc.is_object()) {
-      err("E0101", "", "the document must be a JSON object, got " + a_kind(doc),
+      err("E0101", "", "the document must be a JSON object, got " + json_kind_phrase(doc),
           "a spec looks like {\"efc\": 1, \"name\": ..., \"parts\": [...]}");
       return;
     }
@@ -117,7 +106,7 @@ class Builder {
     diags_.error(code, obj_.file, p.first, p.second, ptr, std::move(msg), std::move(hint));
   }
   void type_err(const std::string& ptr, const json& v, const std::string& want) {
-    err("E0101", ptr, "'" + last_token(ptr) + "' must be " + want + ", got " + a_kind(v));
+    err("E0101", ptr, "'" + last_token(ptr) + "' must be " + want + ", got " + json_kind_phrase(v));
   }
 
   // ------------------------------------------------------------ fields
