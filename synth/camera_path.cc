@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "synth/image/rng.h"
+#include "synth/timeline.h"
 
 namespace efc::synth {
 namespace {
@@ -12,11 +13,6 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
 constexpr double kTwoPi = 6.283185307179586;
-
-double smoothstep(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3 - 2 * x);
-}
 
 // The wearer's eye is at a standing person's height (1.5-1.8 m over the
 // camera_height knob's range), and always a little above the object's centre.

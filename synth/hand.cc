@@ -30,7 +30,48 @@ Eigen::Isometry3d body_pose(const mjData* d, int body) {
   return T;
 }
 
+// The hand at rest, relative to the camera: low and to the right, below
+// the image, fingers forward.
+Eigen::Isometry3d hand_rest(const CameraPose& cam) {
+  Eigen::Isometry3d H = Eigen::Isometry3d::Identity();
+  Matrix3d R;
+  R.col(2) = cam.rotation.col(2);  // fingers along the view
+  R.col(0) = cam.rotation.col(0);  // across: the camera's right
+  R.col(1) = R.col(2).cross(R.col(0));
+  H.linear() = R;
+  H.translation() = cam.position + cam.rotation * Vector3d(0.16, 0.42, 0.30);
+  return H;
+}
+
+Eigen::Isometry3d blend(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double w) {
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.linear() =
+      Eigen::Quaterniond(a.linear()).slerp(w, Eigen::Quaterniond(b.linear())).toRotationMatrix();
+  out.translation() = (1 - w) * a.translation() + w * b.translation();
+  return out;
+}
+
 }  // namespace
+
+HandState hand_at(double t, const CameraPose& camera, const std::vector<Grasp>& grasps,
+                  const std::vector<Visit>& visits, const mjData* d) {
+  HandState h;
+  h.pose = hand_rest(camera);
+  for (size_t i = 0; i < grasps.size() && i < visits.size(); ++i) {
+    const Visit& v = visits[i];
+    if (t < v.reach || t > v.leave) continue;
+    const Eigen::Isometry3d held = grasps[i].hand_pose(d);
+    if (t < v.grasp) {
+      h.pose = blend(h.pose, held, smoothstep((t - v.reach) / (v.grasp - v.reach)));
+    } else if (t <= v.release) {
+      h.pose = held;
+      h.holding = &grasps[i];
+    } else {
+      h.pose = blend(held, h.pose, smoothstep((t - v.release) / (v.leave - v.release)));
+    }
+  }
+  return h;
+}
 
 std::string hand_body_xml(const SceneKnobs& knobs, const Vector3d& parked) {
   static constexpr std::array<std::array<double, 3>, 4> kSkin = {

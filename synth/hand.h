@@ -10,8 +10,11 @@
 #include <Eigen/Geometry>
 
 #include <string>
+#include <vector>
 
 #include "compiler/ir.h"
+#include "synth/camera_path.h"
+#include "synth/timeline.h"
 #include "synth/suite/knobs.h"
 
 namespace efc::synth {
@@ -37,5 +40,15 @@ struct Grasp {
 // eye (simulation frame) can see; the point is put on the part's surface by a
 // ray cast.
 Grasp plan_grasp(const Object& obj, int part, const mjModel* m, const mjData* d, const Eigen::Vector3d& eye);
+
+// Where the hand is at time t: at rest low beside the camera, reaching a
+// receptor, holding it (moving with the part), letting go. grasps[i] is
+// visits[i]'s. `holding` is the grasp in use while the hand holds a part.
+struct HandState {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // the hand frame, simulation frame
+  const Grasp* holding = nullptr;
+};
+HandState hand_at(double t, const CameraPose& camera, const std::vector<Grasp>& grasps,
+                  const std::vector<Visit>& visits, const mjData* d);
 
 }  // namespace efc::synth

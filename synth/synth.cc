@@ -16,6 +16,7 @@
 #include "harness/playback.h"
 #include "harness/render.h"
 #include "synth/camera_path.h"
+#include "synth/effect_visuals.h"
 #include "synth/frame_writer.h"
 #include "synth/hand.h"
 #include "synth/image/preview.h"
@@ -33,14 +34,7 @@ using Eigen::Matrix3d;
 using Eigen::Quaterniond;
 using Eigen::Vector3d;
 
-constexpr double kAirMoteSpeedScale = 0.35;  // motes drift slower than the air, like dust
-constexpr int kAirMotes = 24;
 constexpr const char* kHandMask = "hand";
-
-double smoothstep(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3 - 2 * x);
-}
 
 // Focal length of a 525-pixel Kinect-like camera at 640 wide, scaled.
 seq::Intrinsics intrinsics_for(int width, int height) {
@@ -50,48 +44,6 @@ seq::Intrinsics intrinsics_for(int width, int height) {
   K.cy = 0.5 * (height - 1);
   return K;
 }
-
-void set_mocap(const mjModel* m, mjData* d, int body, const Vector3d& p, const Quaterniond& q) {
-  const int id = m->body_mocapid[body];
-  if (id < 0) return;
-  for (int k = 0; k < 3; ++k) d->mocap_pos[3 * id + k] = p[k];
-  d->mocap_quat[4 * id] = q.w();
-  d->mocap_quat[4 * id + 1] = q.x();
-  d->mocap_quat[4 * id + 2] = q.y();
-  d->mocap_quat[4 * id + 3] = q.z();
-}
-
-// The hand at rest, relative to the camera: low and to the right, mostly
-// below the image, fingers forward.
-Isometry3d hand_rest(const CameraPose& cam) {
-  Isometry3d H = Isometry3d::Identity();
-  Matrix3d R;
-  R.col(2) = cam.rotation.col(2);   // fingers along the view
-  R.col(0) = cam.rotation.col(0);   // across: the camera's right
-  R.col(1) = R.col(2).cross(R.col(0));
-  H.linear() = R;
-  H.translation() = cam.position + cam.rotation * Vector3d(0.16, 0.42, 0.30);
-  return H;
-}
-
-Isometry3d blend(const Isometry3d& a, const Isometry3d& b, double w) {
-  Isometry3d out = Isometry3d::Identity();
-  out.linear() = Quaterniond(a.linear()).slerp(w, Quaterniond(b.linear())).toRotationMatrix();
-  out.translation() = (1 - w) * a.translation() + w * b.translation();
-  return out;
-}
-
-// One airflow's motes: distance along the outlet axis and a fixed offset
-// across it, advanced by the air speed.
-struct Motes {
-  int function = -1;       // index into the controller's rows
-  int site = -1, body = -1;
-  Vector3d direction;      // outlet direction in the effector body's frame
-  double cone = 0.3, reach = 1.0;
-  std::vector<int> bodies;
-  std::vector<double> along;
-  std::vector<Vector3d> across;  // unit offsets in the cone's cross-section, scaled by along
-};
 
 std::string role_of(const Object& obj, int part) {
   bool receptor = false, effector = false;
@@ -205,37 +157,8 @@ int synthesize(const Object& obj, const SynthOptions& opts, const std::string& o
   for (const Function& f : obj.functions)
     if (f.receptor_index != f.effector_index) swap_pairs.push_back({f.receptor_index, f.effector_index});
 
-  // Air motes and glowing materials.
-  std::vector<Motes> motes;
-  std::vector<std::pair<int, int>> glows;  // (function row, material)
-  for (int i = 0; i < controller.count(); ++i) {
-    const efc_mj::FunctionBinding& b = controller.binding(i);
-    const Function* fn = nullptr;
-    for (const Function& f : obj.functions)
-      if (f.name == b.name) fn = &f;
-    if (!fn) continue;
-    if (fn->effect.type == EffectType::Illumination) {
-      const int mat = mj_name2id(m, mjOBJ_MATERIAL, (std::string(kGlowMaterialPrefix) + b.name).c_str());
-      if (mat >= 0) glows.push_back({i, mat});
-    }
-    if (fn->effect.type != EffectType::Airflow) continue;
-    Motes mo;
-    mo.function = i;
-    mo.site = mj_name2id(m, mjOBJ_SITE, naming::mjcf_point(b.name).c_str());
-    mo.body = mj_name2id(m, mjOBJ_BODY, b.effector_body);
-    mo.direction = Vector3d(b.direction[0], b.direction[1], b.direction[2]).normalized();
-    mo.cone = b.cone_angle;
-    mo.reach = b.reach > 0 ? b.reach : 1.0;
-    Rng rng(stream_seed(opts.seed, 0x616972, i));  // "air"
-    for (int k = 0; k < kAirMotes; ++k) {
-      mo.bodies.push_back(mj_name2id(m, mjOBJ_BODY, (std::string(kAirPrefix) + b.name + "_" + std::to_string(k)).c_str()));
-      mo.along.push_back(rng.uniform(0, mo.reach));
-      const double a = rng.uniform(0, 2 * M_PI), r = std::sqrt(rng.uniform());
-      mo.across.push_back(Vector3d(r * std::cos(a), r * std::sin(a), 0));
-    }
-    if (mo.site >= 0 && mo.body >= 0) motes.push_back(std::move(mo));
-  }
   const Vector3d parked = layout.center_object + Vector3d(0, 0, layout.radius + 50.0);
+  EffectVisuals visuals(obj, m, controller, parked, opts.seed);
 
   // The folder is built beside its final place and renamed at the end.
   const fs::path final_dir = fs::absolute(out_dir);
@@ -291,48 +214,9 @@ int synthesize(const Object& obj, const SynthOptions& opts, const std::string& o
         const double tf = frame / opts.fps;
         const CameraPose& cam = path[frame];
         set_mocap(m, d, head, cam.position, mujoco_camera_quat(cam.rotation));
-        // The hand: at rest, reaching, holding (moving with the part), letting go.
-        Isometry3d H = hand_rest(cam);
-        const Grasp* holding = nullptr;
-        for (size_t i = 0; i < grasps.size(); ++i) {
-          const Visit& v = timeline.visits[i];
-          if (tf < v.reach || tf > v.leave) continue;
-          const Isometry3d held = grasps[i].hand_pose(d);
-          if (tf < v.grasp) {
-            H = blend(H, held, smoothstep((tf - v.reach) / (v.grasp - v.reach)));
-          } else if (tf <= v.release) {
-            H = held;
-            holding = &grasps[i];
-          } else {
-            H = blend(held, H, smoothstep((tf - v.release) / (v.leave - v.release)));
-          }
-        }
-        set_mocap(m, d, hand, H.translation(), Quaterniond(H.linear()));
-        for (Motes& mo : motes) {
-          const double speed = controller.readout(mo.function).measured;
-          const Vector3d origin(d->site_xpos[3 * mo.site], d->site_xpos[3 * mo.site + 1], d->site_xpos[3 * mo.site + 2]);
-          Matrix3d R;
-          for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) R(r, c) = d->xmat[9 * mo.body + 3 * r + c];
-          const Vector3d axis = (R * mo.direction).normalized();
-          const Quaterniond q = Quaterniond::FromTwoVectors(Vector3d::UnitZ(), axis);
-          for (size_t j = 0; j < mo.bodies.size(); ++j) {
-            if (speed <= 1e-3) {
-              set_mocap(m, d, mo.bodies[j], parked, Quaterniond::Identity());
-              continue;
-            }
-            mo.along[j] = std::fmod(mo.along[j] + kAirMoteSpeedScale * speed / opts.fps, mo.reach);
-            const Vector3d p = origin + axis * mo.along[j] +
-                               q * (mo.across[j] * (mo.along[j] * std::tan(mo.cone) + 0.01));
-            set_mocap(m, d, mo.bodies[j], p, q);
-          }
-        }
-        for (const auto& [row, mat] : glows) {
-          const efc_rt::EffectParams& e = controller.binding(row).params.effect;
-          const double span = e.e_hi - e.e_lo;
-          const double f = span != 0 ? (controller.readout(row).s_E - e.e_lo) / span : 0;
-          m->mat_emission[mat] = static_cast<float>(std::clamp(f, 0.0, 1.0));
-        }
+        const HandState hand_now = hand_at(tf, cam, grasps, timeline.visits, d);
+        set_mocap(m, d, hand, hand_now.pose.translation(), Quaterniond(hand_now.pose.linear()));
+        visuals.update(m, d, controller, 1 / opts.fps);
         mj_kinematics(m, d);
         mj_camlight(m, d);
         const auto r0 = std::chrono::steady_clock::now();
@@ -344,10 +228,10 @@ int synthesize(const Object& obj, const SynthOptions& opts, const std::string& o
         render_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - r0).count();
         // hands.txt: the contact point while holding, else the fingertips
         // when they are in the picture.
-        const Vector3d hand_point = holding ? holding->point(d) : H.translation();
+        const Vector3d hand_point = hand_now.holding ? hand_now.holding->point(d) : hand_now.pose.translation();
         const Vector3d in_cam = cam.rotation.transpose() * (hand_point - cam.position);
         const double u = K.fx * in_cam.x() / in_cam.z() + K.cx, v = K.fy * in_cam.y() / in_cam.z() + K.cy;
-        const bool seen = holding || (in_cam.z() > 0.05 && u >= 0 && u <= opts.width - 1 && v >= 0 &&
+        const bool seen = hand_now.holding || (in_cam.z() > 0.05 && u >= 0 && u <= opts.width - 1 && v >= 0 &&
                                       v <= opts.height - 1);
         truth.record(tf, m, d, controller, hand_point, seen);
         seq::Pose& pose = poses_sim[frame];

@@ -26,6 +26,12 @@ struct Timeline {
   Profile profile;            // Kind::Csv, one column per profile-driven receptor
 };
 
+// 0 below 0, 1 above 1, a smooth S between: eases every move in and out.
+inline double smoothstep(double x) {
+  x = x < 0 ? 0 : (x > 1 ? 1 : x);
+  return x * x * (3 - 2 * x);
+}
+
 // At most this many receptors are operated; the others hold where they start.
 constexpr int kMaxVisits = 6;
 
