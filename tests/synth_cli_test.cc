@@ -48,6 +48,19 @@ TEST(SynthCli, AWrongSpecIsLocatedAndWritesNothing) {
   fs::remove_all(dir);
 }
 
+TEST(SynthCli, APartNamedHandIsRefused) {
+  const fs::path dir = fresh_dir("hand");
+  fs::create_directories(dir);
+  std::string spec = efc_test::read_file(kExamples + "toaster.json");
+  for (size_t at; (at = spec.find("\"lever\"")) != std::string::npos;) spec.replace(at, 7, "\"hand\"");
+  std::ofstream(dir / "toaster.json") << spec;
+  auto r = run_efc("synth " + (dir / "toaster.json").string() + " -o " + (dir / "seq").string() + " --frames 2");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("error[E1010]"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "seq"));
+  fs::remove_all(dir);
+}
+
 TEST(SynthCli, WritesASequenceWithAPreviewAndReplacesOnlySequences) {
   const fs::path dir = fresh_dir("ok");
   const std::string seq = (dir / "seq").string();
