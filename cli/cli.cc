@@ -123,6 +123,15 @@ int run_cli(int argc, char** argv) {
   add_frame_options(suitec, &suite.synth);
   add_common(suitec, &common, &format);
 
+  std::string track, track_format;
+  CLI::App* articulatec = app.add_subcommand(
+      "articulate", "which joint moved a track (a hand, a handle, a part's pose): fixed, revolute or prismatic");
+  articulatec->add_option("--track", track, "the track file")->required();
+  articulatec->add_option("--format", track_format,
+                          "xyz (x y z, or t x y z as hands.txt), pose7 (x y z qx qy qz qw), tum (t x y z qx qy qz qw)")
+      ->required();
+  add_common(articulatec, &common, &format);
+
   std::vector<std::string> fmt_files;
   bool fmt_check = false;
   CLI::App* fmt = app.add_subcommand("fmt", "rewrite .efc (and .json) specs in canonical form");
@@ -142,6 +151,17 @@ int run_cli(int argc, char** argv) {
       "check-sequence", "validate sequence folders (shared/spec/sequence.md)");
   check_seq->add_option("SEQ", seq_dirs, "sequence folders")->required();
   add_common(check_seq, &common, &format);
+
+  EvalArgs evals;
+  CLI::App* evalc = app.add_subcommand(
+      "eval", "the EgoFun3D paper's metrics: a predicted spec against the true one, or over a list of pairs");
+  evalc->add_option("--pred", evals.pred, "predicted spec (missing or broken: scored as a failure)");
+  evalc->add_option("--gt", evals.gt, "true spec");
+  evalc->add_option("--list", evals.list, "file of pairs: PRED GT [PRED_MASKS GT_SEQ] per line");
+  evalc->add_option("--pred-masks", evals.pred_masks, "folder with masks/<part>/NNNNNN.png predicted");
+  evalc->add_option("--gt-seq", evals.gt_seq, "true sequence (its masks/)");
+  evalc->add_flag("--json", evals.json, "print one JSON object instead of tables");
+  add_common(evalc, &common, &format);
 
   std::string code;
   bool list = false;
@@ -173,7 +193,9 @@ int run_cli(int argc, char** argv) {
   if (*fmt) return cmd_fmt(report, fmt_files, fmt_check);
   if (*convert) return cmd_convert(report, convert_in, convert_out);
   if (*check_seq) return cmd_check_sequence(report, seq_dirs);
+  if (*evalc) return cmd_eval(report, evals);
   if (*synthc) return cmd_synth(report, synth);
+  if (*articulatec) return cmd_articulate(report, track, track_format);
   if (*suitec) return cmd_synth_suite(report, suite);
   return kExitUsage;
 }

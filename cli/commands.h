@@ -24,6 +24,13 @@ int cmd_fmt(Report& report, const std::vector<std::string>& files, bool check_on
 int cmd_convert(Report& report, const std::string& in, const std::string& out);
 int cmd_check_sequence(Report& report, const std::vector<std::string>& dirs);
 
+// efc eval (cli/eval.cc): --pred P --gt G, or --list PAIRS; masks optional.
+struct EvalArgs {
+  std::string pred, gt, list, pred_masks, gt_seq;
+  bool json = false;
+};
+int cmd_eval(Report& report, const EvalArgs& args);
+
 struct PlayArgs {
   std::string spec, profile, csv, render, plot;
   double duration = 0, dt = 0.002, fps = 30;
@@ -63,6 +70,8 @@ int cmd_synth_suite(Report& report, const SynthSuiteArgs& args);
 int check_synth_options(Report& report, const SynthArgs& args);
 // The options of one synth run (progress lines on a terminal).
 synth::SynthOptions synth_options(Report& report, const SynthArgs& args);
+
+int cmd_articulate(Report& report, const std::string& track, const std::string& format);
 
 // Shared by play, parity and replay (run_options.cc): checks --duration and
 // --dt (a positive duration of at most 1e5 s, 0 < dt <= 0.1 s, dt <= duration,

@@ -433,11 +433,43 @@ const std::vector<CodeInfo>& all_codes() {
        "\"parts\" is not given). Names are letters, digits and '_'.\n"
        "  masks/handel/   with \"parts\": {\"handle\": \"receptor\"}\n"
        "Fix: rename the folder, or add the part to \"parts\"."},
+      {"E1030", "track line invalid",
+       "A line of a track file (efc articulate --track) must hold the numbers its\n"
+       "--format names: xyz: x y z (or t x y z, as hands.txt); pose7: x y z qx qy qz\n"
+       "qw (more columns are ignored); tum: t x y z qx qy qz qw. Numbers must be\n"
+       "finite, quaternions non-zero; '#' lines are comments.\n"
+       "  0.1 0.2 abc     -> 'abc' is not a number\n"
+       "Fix: correct the line, or pick the --format the file is in."},
+      {"E1031", "track too short",
+       "Telling fixed, revolute and prismatic apart needs at least 3 samples (and\n"
+       "in practice a good part of the motion).\n"
+       "Fix: record more of the motion."},
       {"E1010", "the spec cannot be filmed by efc synth",
        "efc synth writes one mask folder per part and one for the hand (masks/hand/),\n"
        "so a part named 'hand' would share the hand's folder.\n"
        "  {\"name\": \"hand\", ...}   in \"parts\"\n"
        "Fix: rename the part (e.g. 'hand_wheel')."},
+      {"E1020", "\"x-efc-object-to-world\" is malformed",
+       "The extension places the spec's object frame in the world (efc eval compares\n"
+       "specs there). It must be 16 finite numbers, a 4x4 matrix row-major, whose last\n"
+       "row is 0 0 0 1 and whose 3x3 part is invertible.\n"
+       "  \"x-efc-object-to-world\": [1, 0, 0, 0.5,  0, 1, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]\n"
+       "Fix: write the matrix in full, or leave the key out (the identity)."},
+      {"E1021", "bad line in an efc eval list of pairs",
+       "Each line of the --list file is 'PRED GT' or 'PRED GT PRED_MASKS GT_SEQ',\n"
+       "whitespace-separated, paths relative to the list file's folder; '#' starts a\n"
+       "comment. GT must exist (a missing PRED is scored as a failure), GT_SEQ must be\n"
+       "a folder, and the list must hold at least one pair.\n"
+       "  pred/lamp.json  truth/lamp.json\n"
+       "Fix: correct the line the error points at."},
+      {"E1022", "cannot read the list of pairs",
+       "efc eval --list could not open the file (it does not exist, is a folder, or is\n"
+       "not readable).\n"
+       "Fix: check the path."},
+      {"E1023", "predicted mask unreadable or of the wrong size",
+       "A predicted mask DIR/masks/<part>/NNNNNN.png must be an 8-bit grey PNG of the\n"
+       "true sequence's frame size (a missing frame counts as an empty mask).\n"
+       "Fix: write the masks at the sequence's width and height, 8-bit grey."},
       // ---------------------------------------------------------------- warnings
       {"W0103", "mesh is not closed",
        "The mesh has holes or edges not shared by exactly two triangles, so its\n"

@@ -12,6 +12,7 @@
     sequence/  the recording format: no simulator, backend, harness or CLI
     synth/     never includes the CLI or eval; synth/image and synth/suite
                (pixels and plans) use no simulator
+    pipeline/  no backend, simulator, synth or CLI
 
 Usage: layering_test.py SOURCE_DIR. Exit 1 listing every violation.
 """
@@ -34,6 +35,8 @@ RULES = [
     ("sequence", re.compile(r"^(backends|harness|cli|eval|synth|runtime)/|^mujoco/|^GL/"),
      "the sequence format knows no simulator, backend, harness or CLI"),
     ("synth", re.compile(r"^(cli|eval)/"), "synth does not know the CLI or eval"),
+    ("pipeline", re.compile(r"^(cli|backends|harness|synth|runtime)/|^mujoco/|^GL/"),
+     "the front-end talks to the compiler through the spec it writes: no backend, simulator or CLI"),
     ("synth/image", re.compile(r"^(backends|harness|runtime|synth/(?!image/|suite/))|^mujoco/|^GL/"),
      "synth/image is pixels only: no simulator"),
     ("synth/suite", re.compile(r"^(backends|harness|runtime|sequence|synth/(?!suite/))|^mujoco/|^GL/"),
