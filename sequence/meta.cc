@@ -361,18 +361,7 @@ bool write_meta(const std::string& meta_path, const Meta& meta, std::string* err
       }
     return false;
   }
-  FILE* fp = std::fopen(meta_path.c_str(), "wb");
-  if (!fp) {
-    *error = "cannot write " + meta_path;
-    return false;
-  }
-  const bool wrote = std::fwrite(text.data(), 1, text.size(), fp) == text.size();
-  if (std::fclose(fp) != 0 || !wrote) {
-    *error = "cannot write " + meta_path + " (disk full?)";
-    std::remove(meta_path.c_str());
-    return false;
-  }
-  return true;
+  return write_text_file(meta_path, text, error);
 }
 
 }  // namespace efc::seq

@@ -78,6 +78,10 @@ struct Image16 {
   std::vector<uint16_t> pixels;
 };
 
+// Writes `text` to `path` (removing a half-written file on failure): the one
+// text writer of the sequence files (meta.json, tracks, truth/).
+bool write_text_file(const std::string& path, const std::string& text, std::string* error);
+
 // "000123.png" (six digits; more when the index needs them).
 std::string frame_file(int index);
 

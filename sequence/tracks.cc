@@ -232,7 +232,9 @@ void append_number(std::string* out, double v) {
   out->append(buf, ec == std::errc() ? end : buf);
 }
 
-bool write_text(const std::string& path, const std::string& text, std::string* error) {
+}  // namespace
+
+bool write_text_file(const std::string& path, const std::string& text, std::string* error) {
   FILE* fp = std::fopen(path.c_str(), "wb");
   if (!fp) {
     *error = "cannot write " + path;
@@ -246,8 +248,6 @@ bool write_text(const std::string& path, const std::string& text, std::string* e
   }
   return true;
 }
-
-}  // namespace
 
 bool read_poses(const std::string& path, int frames, Diagnostics& diags, std::vector<Pose>* out) {
   return read_track(path, frames, kPoses, diags, out, check_pose, to_pose);
@@ -280,7 +280,7 @@ bool write_poses(const std::string& path, const std::vector<Pose>& poses, std::s
     }
     text += '\n';
   }
-  return write_text(path, text, error);
+  return write_text_file(path, text, error);
 }
 
 bool write_hands(const std::string& path, const std::vector<HandPoint>& hands, std::string* error) {
@@ -303,7 +303,7 @@ bool write_hands(const std::string& path, const std::vector<HandPoint>& hands, s
     }
     text += '\n';
   }
-  return write_text(path, text, error);
+  return write_text_file(path, text, error);
 }
 
 }  // namespace efc::seq

@@ -19,16 +19,6 @@ using nlohmann::json;
 
 constexpr const char* kVersion = "efc 0.1.0";
 
-bool write_text(const std::string& path, const std::string& text, std::string* error) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  if (!out) {
-    *error = "cannot write '" + path + "'";
-    return false;
-  }
-  return true;
-}
-
 std::string csv(const std::vector<std::string>& columns, const std::vector<double>& times,
                 const std::vector<std::vector<double>>& rows) {
   std::string out = "t";
@@ -130,7 +120,7 @@ bool Truth::write(const Object& obj, const TruthFiles& f, std::string* error) co
   if (!seq::write_meta(f.dir + "/meta.json", meta, error)) return false;
 
   // truth/spec.json with its meshes beside it, so it loads where it lies.
-  if (!write_text(f.dir + "/truth/spec.json", o.spec_json, error)) return false;
+  if (!seq::write_text_file(f.dir + "/truth/spec.json", o.spec_json, error)) return false;
   std::vector<std::pair<std::string, std::string>> meshes;
   for (const Part& p : obj.parts) mesh_paths(p.geometry, &meshes);
   for (const auto& [rel, abs] : meshes) {
@@ -152,13 +142,13 @@ bool Truth::write(const Object& obj, const TruthFiles& f, std::string* error) co
   const Eigen::Matrix4d M = T.matrix();
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) pose.push_back(M(r, c));
-  if (!write_text(f.dir + "/truth/object_pose.json", json{{"object_to_world", pose}}.dump(2) + "\n", error))
+  if (!seq::write_text_file(f.dir + "/truth/object_pose.json", json{{"object_to_world", pose}}.dump(2) + "\n", error))
     return false;
   std::vector<std::string> effect_columns;
   for (const std::string& fn : functions_) effect_columns.push_back(fn + ".s_E");
-  if (!write_text(f.dir + "/truth/joints.csv", csv(joint_parts_, times_, joints_), error) ||
-      !write_text(f.dir + "/truth/effects.csv", csv(effect_columns, times_, effects_), error) ||
-      !write_text(f.dir + "/truth/profile.csv", profile_csv(*f.timeline), error))
+  if (!seq::write_text_file(f.dir + "/truth/joints.csv", csv(joint_parts_, times_, joints_), error) ||
+      !seq::write_text_file(f.dir + "/truth/effects.csv", csv(effect_columns, times_, effects_), error) ||
+      !seq::write_text_file(f.dir + "/truth/profile.csv", profile_csv(*f.timeline), error))
     return false;
 
   json visits = json::array();
@@ -174,7 +164,7 @@ bool Truth::write(const Object& obj, const TruthFiles& f, std::string* error) co
                          {"visits", visits},
                          {"replay", "efc play truth/spec.json --profile csv:truth/profile.csv --duration " +
                                         std::to_string(f.timeline->duration) + " --dt " + std::to_string(o.dt)}};
-  if (!write_text(f.dir + "/truth/timeline.json", timeline.dump(2) + "\n", error)) return false;
+  if (!seq::write_text_file(f.dir + "/truth/timeline.json", timeline.dump(2) + "\n", error)) return false;
 
   json masks = json::array();
   for (const MaskNoiseLog& log : *f.mask_noise) {
@@ -187,7 +177,7 @@ bool Truth::write(const Object& obj, const TruthFiles& f, std::string* error) co
                      {"swapped", swapped}});
   }
   const json noise_doc = {{"level", to_string(o.knobs.noise)}, {"seed", o.seed}, {"masks", masks}};
-  return write_text(f.dir + "/truth/noise.json", noise_doc.dump(2) + "\n", error);
+  return seq::write_text_file(f.dir + "/truth/noise.json", noise_doc.dump(2) + "\n", error);
 }
 
 }  // namespace efc::synth

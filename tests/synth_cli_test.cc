@@ -28,9 +28,9 @@ fs::path fresh_dir(const std::string& stem) {
 
 TEST(SynthCli, BadOptionsAreUsageErrorsAndWriteNothing) {
   const fs::path out = fresh_dir("bad");
-  for (const std::string& opts : {"--noise loud", "--frames 0", "--fps -3", "--width 4", "--profile csv:x.csv",
+  for (const char* opts : {"--noise loud", "--frames 0", "--fps -3", "--width 4", "--profile csv:x.csv",
                                   "--profile wobble"}) {
-    auto r = run_efc("synth " + kExamples + "toaster.json -o " + out.string() + " " + opts);
+    auto r = run_efc("synth " + kExamples + "toaster.json -o " + out.string() + " " + std::string(opts));
     EXPECT_EQ(r.exit_code, 2) << opts << "\n" << r.err;
     EXPECT_NE(r.err.find("error[E0910]"), std::string::npos) << opts << "\n" << r.err;
     EXPECT_FALSE(fs::exists(out)) << opts;
