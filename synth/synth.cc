@@ -200,7 +200,7 @@ int synthesize(const Object& obj, const SynthOptions& opts, const std::string& o
   FrameWriter writer(wc);
 
   Truth truth;
-  truth.begin(obj, controller);
+  truth.begin(obj, m, controller);
   std::vector<seq::Pose> poses_sim(opts.frames);
   const long last_step = std::lround((opts.frames - 1) / opts.fps / opts.dt);
   int frame = 0;
@@ -233,7 +233,7 @@ int synthesize(const Object& obj, const SynthOptions& opts, const std::string& o
         const double u = K.fx * in_cam.x() / in_cam.z() + K.cx, v = K.fy * in_cam.y() / in_cam.z() + K.cy;
         const bool seen = hand_now.holding || (in_cam.z() > 0.05 && u >= 0 && u <= opts.width - 1 && v >= 0 &&
                                       v <= opts.height - 1);
-        truth.record(tf, m, d, controller, hand_point, seen);
+        truth.record(tf, d, controller, hand_point, seen);
         seq::Pose& pose = poses_sim[frame];
         pose.t = tf;
         for (int c = 0; c < 3; ++c) pose.p[c] = cam.position[c];

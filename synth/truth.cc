@@ -57,20 +57,21 @@ std::vector<seq::Pose> to_world(const std::vector<seq::Pose>& sim, const Isometr
 
 }  // namespace
 
-void Truth::begin(const Object& obj, const efc_mj::Controller& controller) {
+void Truth::begin(const Object& obj, const mjModel* m, const efc_mj::Controller& controller) {
   for (const Part& p : obj.parts)
-    if (p.joint && p.joint->movable()) joint_parts_.push_back(p.name);
+    if (p.joint && p.joint->movable()) {
+      joint_parts_.push_back(p.name);
+      const int j = mj_name2id(m, mjOBJ_JOINT, p.name.c_str());
+      joint_qpos_.push_back(j >= 0 ? m->jnt_qposadr[j] : -1);
+    }
   for (int i = 0; i < controller.count(); ++i) functions_.push_back(controller.binding(i).name);
 }
 
-void Truth::record(double t, const mjModel* m, const mjData* d, const efc_mj::Controller& controller,
-                   const Vector3d& hand_point, bool hand_seen) {
+void Truth::record(double t, const mjData* d, const efc_mj::Controller& controller, const Vector3d& hand_point,
+                   bool hand_seen) {
   times_.push_back(t);
   std::vector<double> joints;
-  for (const std::string& name : joint_parts_) {
-    const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
-    joints.push_back(j >= 0 ? d->qpos[m->jnt_qposadr[j]] : std::nan(""));
-  }
+  for (int adr : joint_qpos_) joints.push_back(adr >= 0 ? d->qpos[adr] : std::nan(""));
   joints_.push_back(std::move(joints));
   std::vector<double> effects;
   for (int i = 0; i < controller.count(); ++i) effects.push_back(controller.readout(i).s_E);

@@ -39,15 +39,16 @@ struct TruthFiles {
 class Truth {
  public:
   // Columns: every movable joint (by part) and every function's s_E.
-  void begin(const Object& obj, const efc_mj::Controller& controller);
+  void begin(const Object& obj, const mjModel* m, const efc_mj::Controller& controller);
   // One frame: joints and effects as the playback has them now; the hand's
   // point (simulation frame) and whether the camera sees it.
-  void record(double t, const mjModel* m, const mjData* d, const efc_mj::Controller& controller,
-              const Eigen::Vector3d& hand_point, bool hand_seen);
+  void record(double t, const mjData* d, const efc_mj::Controller& controller, const Eigen::Vector3d& hand_point,
+              bool hand_seen);
   bool write(const Object& obj, const TruthFiles& files, std::string* error) const;
 
  private:
   std::vector<std::string> joint_parts_;
+  std::vector<int> joint_qpos_;  // qpos address of each, -1 if the model lacks it
   std::vector<std::string> functions_;
   std::vector<std::vector<double>> joints_, effects_;  // per frame
   std::vector<double> times_;
