@@ -10,6 +10,7 @@
 #include <limits>
 #include <random>
 #include <regex>
+#include <sstream>
 #include <unistd.h>
 
 #include "sequence/sequence.h"
@@ -221,25 +222,19 @@ Meta sample_meta(int frames, int w, int h) {
   return m;
 }
 
-// The example of shared/spec/sequence.md.
-const char* kSpecExample = R"({
-  "efc_sequence": 1,
-  "fps": 30,
-  "width": 640, "height": 480,
-  "intrinsics": {"fx": 525.0, "fy": 525.0, "cx": 319.5, "cy": 239.5},
-  "depth_scale": 0.001,
-  "frames": 300,
-  "gravity": [0, 0, -1],
-  "parts": {"handle": "receptor", "spout": "effector"},
-  "functions": [{"name": "flow", "receptor": "handle", "effector": "spout"}],
-  "source": "synthetic"
+// The example of shared/spec/sequence.md, copied into tests/data (shared/
+// may be absent); tests/sequence_schema_test.py reads the same file.
+std::string spec_example() {
+  std::ifstream in(std::string(EFC_SOURCE_DIR) + "/tests/data/sequence-meta-example.json");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
 }
-)";
 
 TEST(SequenceMeta, ReadsTheSpecExample) {
   Diagnostics diags;
   Meta m;
-  ASSERT_TRUE(read_meta_text(kSpecExample, "meta.json", diags, &m)) << all_text(diags);
+  ASSERT_TRUE(read_meta_text(spec_example(), "meta.json", diags, &m)) << all_text(diags);
   EXPECT_EQ(m.width, 640);
   EXPECT_EQ(m.height, 480);
   EXPECT_EQ(m.frames, 300);

@@ -15,19 +15,10 @@ import jsonschema
 
 SCHEMA_PATH = os.path.join("grammar", "sequence-meta.schema.json")
 
-# The example of shared/spec/sequence.md, copied (shared/ may be absent).
-SPEC_EXAMPLE = """{
-  "efc_sequence": 1,
-  "fps": 30,
-  "width": 640, "height": 480,
-  "intrinsics": {"fx": 525.0, "fy": 525.0, "cx": 319.5, "cy": 239.5},
-  "depth_scale": 0.001,
-  "frames": 300,
-  "gravity": [0, 0, -1],
-  "parts": {"handle": "receptor", "spout": "effector"},
-  "functions": [{"name": "flow", "receptor": "handle", "effector": "spout"}],
-  "source": "synthetic"
-}"""
+# The example of shared/spec/sequence.md, copied into tests/data (shared/ may
+# be absent); sequence_format_test.cc reads the same file.
+EXAMPLE_PATH = os.path.join("tests", "data", "sequence-meta-example.json")
+SPEC_EXAMPLE = None  # its text, read in main()
 
 MINIMAL = {
     "efc_sequence": 1,
@@ -113,6 +104,9 @@ def shared_example():
 
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else "."
+    global SPEC_EXAMPLE
+    with open(os.path.join(root, EXAMPLE_PATH), encoding="utf-8") as f:
+        SPEC_EXAMPLE = f.read()
     with open(os.path.join(root, SCHEMA_PATH), encoding="utf-8") as f:
         schema = json.load(f)
     jsonschema.Draft202012Validator.check_schema(schema)
