@@ -1,0 +1,75 @@
+// The reconstruction stage's core: one part's points over many frames fused
+// into one clean cloud, and a closed mesh of it for collision and inertia.
+#pragma once
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "pipeline/cloud/cloud.h"
+#include "pipeline/cloud/mesh.h"
+#include "pipeline/cloud/voxel_key.h"
+
+namespace efc::pipeline {
+
+// Points of one part seen over many frames, each frame's cloud already mapped into the
+// part's own frame (the caller undoes the part's motion). Fuses them: a voxel grid
+// (voxel size) keeping per-voxel point count and centroid (normals averaged), drops voxels seen in
+// fewer than min_observations frames (each frame counts once per voxel: transient outliers
+// such as the hand or mask bleed do not survive), then statistical outlier removal.
+//
+// Adaptive threshold: the observations a voxel needs are
+// clamp(min_observations, 1, frames()), so a part seen in a single frame keeps
+// all of its points instead of vanishing (and 2 frames with min_observations
+// 3 need both). A non-positive or non-finite voxel counts as 0.003 m; outlier
+// removal is skipped when outlier_k < 1 or there are too few voxels (<= outlier_k).
+// Frames with no points still count as frames (the part was looked for and not
+// seen there). Non-finite points are ignored.
+struct FusionOptions {
+  double voxel = 0.003;
+  int min_observations = 2;
+  int outlier_k = 12;
+  double outlier_std_ratio = 2.0;
+};
+
+class PartFusion {
+ public:
+  explicit PartFusion(const FusionOptions& options);
+  void add_frame(const Cloud& cloud_in_part_frame);
+  int frames() const;
+  // The surviving voxel centroids (with normals when every non-empty frame
+  // had them), in the order the voxels were first seen.
+  Cloud fused() const;
+
+  // Additions: voxels occupied so far (before any thresholding), and the
+  // observation count fused() requires now.
+  size_t voxels() const { return voxels_.size(); }
+  int required_observations() const;
+
+ private:
+  struct Voxel {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
+    Eigen::Vector3d first_normal = Eigen::Vector3d::UnitZ();
+    long count = 0;
+    int observations = 0;   // frames that put a point here
+    int last_frame = -1;    // so a frame counts once
+  };
+  FusionOptions options_;
+  int frames_ = 0;
+  bool normals_ = true;  // every non-empty frame so far had normals
+  std::vector<Voxel> voxels_;  // in the order first seen: fused() is deterministic
+  std::unordered_map<detail::VoxelKey, size_t, detail::VoxelKeyHash> index_;  // -> voxels_
+};
+
+// A closed mesh for collision and inertia from a fused cloud: the convex hull of the points,
+// after dropping the points of the (up to) 1% most isolated ones. Explains in *note what it did.
+bool closed_mesh(const Cloud& fused, TriMesh* out, std::string* error);
+// The same, and *note (may be nullptr) says what it did: the points used,
+// those dropped as isolated, the hull's vertices, faces, volume and area.
+// "Isolated": among the 1% with the largest mean distance to their 8 nearest
+// neighbours, those whose distance is over 3x the median one (a clean cloud
+// loses nothing).
+bool closed_mesh(const Cloud& fused, TriMesh* out, std::string* error, std::string* note);
+
+}  // namespace efc::pipeline
