@@ -245,7 +245,8 @@ TEST(SynthSuite, KnobsStayInTheirRanges) {
   EXPECT_GT(noise[NoiseLevel::None], 0);
   EXPECT_GT(noise[NoiseLevel::Mild], noise[NoiseLevel::None]);
   EXPECT_GT(noise[NoiseLevel::Realistic], noise[NoiseLevel::None]);
-  EXPECT_EQ(profiles, (std::set<std::string>{"sweep", "press:1", "press:2", "ramp", "hold:hi"}));
+  // Every recording demonstrates its function: two or three presses.
+  EXPECT_EQ(profiles, (std::set<std::string>{"press:2", "press:3"}));
 }
 
 TEST(SynthSuite, ForcedNoiseChangesOnlyTheNoise) {

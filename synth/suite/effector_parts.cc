@@ -47,7 +47,10 @@ void temperature(EffectorBuild& e, const Body& body, SuiteRng& rng) {
     const double room = snap(rng.uniform(20, 26), 10);
     set_range(e, room, snap(rng.uniform(4, 16), 10));
   }
-  e.effect["time_constant"] = snap(rng.uniform(2, 30), 10);
+  // Time constants that show within a demonstration (a press holds the
+  // receptor on for a second or two): 0.5 to 3 s. Longer ones barely redden
+  // the part in a 5 to 10 s clip and cannot be told from nothing.
+  e.effect["time_constant"] = snap(rng.uniform(0.5, 3), 10);
   if (rng.chance(0.6))
     e.effect["position"] = json_vec(top.at(a, b, burner ? height : height / 2), 1e4);
 }

@@ -155,7 +155,10 @@ void vary_effect(SpecJson& e, const Affine& q, double s, SuiteRng& rng) {
     if (e.contains(point) && e[point].is_object()) multiply_vec(e[point], "position", s);
   multiply(e, "reach", s);
   jitter_colour(e, "color", rng);
-  if (e.contains("time_constant")) multiply(e, "time_constant", snap(rng.uniform(0.6, 1.5), 1e3));
+  // A real heater takes minutes; a suite clip lasts seconds. The time
+  // constant is drawn as for a generated heater (0.5 to 3 s,
+  // effector_parts.cc) so that the effect shows within the recording.
+  if (e.contains("time_constant")) e["time_constant"] = snap(rng.uniform(0.5, 3), 10);
 }
 
 // The receptor's switching point, explicit or the spec's default.

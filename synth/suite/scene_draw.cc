@@ -48,9 +48,12 @@ SceneKnobs draw_scene_knobs(SuiteRng& rng, const NoiseLevel* forced) {
 }
 
 std::string draw_profile(SuiteRng& rng) {
-  static const std::vector<std::string> kProfiles = {"sweep", "press:1", "press:2", "ramp",
-                                                     "hold:hi"};
-  return kProfiles[rng.weighted({0.35, 0.15, 0.25, 0.15, 0.1})];
+  // As a person demonstrating the function would: through the receptor's
+  // whole travel and back, at least twice. One ramp, hold or press cannot
+  // tell binary, step, latching and cumulative apart (they all switch on
+  // once), so those profiles are no longer drawn (efc synth still has them).
+  static const std::vector<std::string> kProfiles = {"press:2", "press:3"};
+  return kProfiles[rng.weighted({0.7, 0.3})];
 }
 
 }  // namespace efc::synth::suite

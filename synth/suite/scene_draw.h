@@ -37,8 +37,12 @@ const KnobRanges& knob_ranges();
 // null the noise level is drawn: mostly mild or realistic, some none.
 SceneKnobs draw_scene_knobs(SuiteRng& rng, const NoiseLevel* forced);
 
-// A motion profile for `efc synth --profile`: sweep, press:1, press:2, ramp
-// or hold:hi, mostly sweeps and presses.
+// A motion profile for `efc synth --profile` that demonstrates the function:
+// press:2 (70 %) or press:3 (30 %), i.e. the receptor's whole travel and back
+// two or three times, with rests between (a latching switch goes on and off
+// again, a counter counts on, a step shows its hysteresis on the way down).
+// Film at least 300 frames (10 s at 30 fps) so each press is slow enough
+// for a lagging effect to show.
 std::string draw_profile(SuiteRng& rng);
 
 }  // namespace efc::synth::suite

@@ -45,7 +45,7 @@ struct SuiteEntry {
   std::string mapping, effect, receptor_joint;
   bool small_receptor = false;  // the receptor's largest size is at most 5 cm
   uint64_t seed = 0;            // the sequence's own seed (camera jitter, noise)
-  std::string profile;          // for efc synth --profile: sweep, press:1, press:2, ramp, hold:hi
+  std::string profile;          // for efc synth --profile: press:2 or press:3 (scene_draw.h)
   SceneKnobs knobs;  // knobs.object_scale: the scale applied to an example (1 when generated)
   // (absolute source path, path relative to the spec's folder) of each mesh.
   std::vector<std::pair<std::string, std::string>> files_to_copy;

@@ -23,11 +23,17 @@ SpecJson binary(const ReceptorTravel& t, SuiteRng& rng) {
 
 SpecJson step(const ReceptorTravel& t, SuiteRng& rng) {
   SpecJson m = {{"type", "step"}};
-  if (!t.continuous && rng.chance(0.2)) return m;  // the paper's 70 % / 2 % rule
+  // The chance stays drawn (the stream is unchanged) but the default is not
+  // used: the paper's 70 % / 2 % rule switches back within one frame's worth
+  // of a press's travel, so in a recording it is a binary switch at 70 %.
+  const bool default_rule = !t.continuous && rng.chance(0.2);
+  (void)default_rule;
   const double threshold = snap_position(travel_point(t, 0.3, 0.85, rng));
   // Below the threshold by at most 80 % of the way down, so returning to the
-  // start of the travel always switches it off again.
-  const double width = std::min((t.hi - t.lo) * rng.uniform(0.01, 0.12), 0.8 * (threshold - t.lo));
+  // start of the travel always switches it off again; at least 8 % of the
+  // travel, so that a recording shows the switch-off lagging the switch-on
+  // point (a press crosses a few % of the travel per frame).
+  const double width = std::min((t.hi - t.lo) * rng.uniform(0.08, 0.25), 0.8 * (threshold - t.lo));
   m["threshold"] = threshold;
   m["hysteresis"] = snap_position(width);
   return m;

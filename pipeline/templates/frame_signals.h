@@ -1,0 +1,59 @@
+// What changes at an effector, frame by frame, read from the recording's
+// pixels: one signal per image-borne effect hypothesis (geometry needs no
+// pixels: it is the effector's own joint position).
+//   glow      mean luminance of the effector's pixels (a lamp's emission)
+//   heat      redness of the effector's pixels as the chromaticity
+//             R / (R + G + B) of their mean colour (the runtime blends a
+//             heated part towards red-hot; shading and a lamp's emission
+//             scale the channels alike and leave it)
+//   droplets  area (m^2 at the effector's distance) of small water-blue
+//             blobs whose ray passes through the space below, around or
+//             above the effector
+//   motes     the same for small near-white streaks brighter than what is
+//             behind them (air motes)
+// The renderers' materials decide the colours: droplets (0.35, 0.55, 0.95),
+// motes (0.92, 0.95, 1); shading scales channels alike, so the tests are on
+// the channels' order and spread (frame_signals.cc, blob_kind).
+// Effector pixels: its mask's core (eroded up to 2 px while pixels remain: a
+// segmenter's grown outline takes in the neighbours' colour) where the depth
+// agrees with the part's box, the hand's pixels left out.
+// A blob pixel: in no part's mask nor the (grown) hand's, unlike both of its
+// neighbours 1-3 px away across a row or a column while those two are alike
+// (a droplet or a mote's streak, not the edge between two surfaces). Blobs
+// are found in colour, not depth: droplets and motes are translucent, and
+// translucent bodies leave no depth. Their ray must enter the space in
+// question before the surface the depth sees. Frames where that space is out
+// of view, or the effector has no pixels, are NaN (not observed).
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include <string>
+#include <vector>
+
+#include "compiler/diagnostics.h"
+#include "pipeline/templates/template_input.h"
+
+namespace efc::pipeline {
+
+struct EffectorSignals {
+  std::vector<double> glow, heat, droplets, motes;  // per frame; NaN = not observed
+  // Mean luminance of the image around the effector (the blobs' search
+  // space, the hand left out): a lamp lights what is around it, which shows
+  // when the bulb itself is hidden (under a hood, inside a fridge).
+  std::vector<double> surround;
+  int frames_seen = 0;                               // frames with effector pixels
+  // Object-frame blob points (summed) and counts, for the emitter and outlet.
+  Eigen::Vector3d droplet_sum = Eigen::Vector3d::Zero(), mote_sum = Eigen::Vector3d::Zero();
+  double droplet_top_z = -1e9;  // highest droplet point (object frame)
+  long droplet_points = 0, mote_points = 0;
+  int frames_read = 0;
+};
+
+// One entry per effector index (into input.parts); frames are read once for
+// all of them, split over `threads`. Unreadable frames are skipped (their
+// diagnostics are not repeated here: the caller warns once).
+std::vector<EffectorSignals> measure_effectors(const TemplateInput& input, const std::vector<int>& effectors,
+                                               int threads, int* frames_failed);
+
+}  // namespace efc::pipeline
