@@ -132,6 +132,19 @@ int run_cli(int argc, char** argv) {
       ->required();
   add_common(articulatec, &common, &format);
 
+  InferArgs infer;
+  CLI::App* inferc = app.add_subcommand(
+      "infer", "infer an interactive object (parts, joints, meshes, function templates) from a recording");
+  inferc->add_option("SEQ", infer.sequence, "sequence folder (shared/spec/sequence.md)")->required();
+  inferc->add_option("-o,--output", infer.output, "output folder: spec.json, meshes/, report.json")->required();
+  inferc->add_flag("--report", infer.report, "also print the report's summary on stdout");
+  inferc->add_flag("--no-hands", infer.no_hands, "ignore hands.txt (to see what the hand track buys)");
+  inferc->add_option("--vlm", infer.vlm,
+                     "ask a vision-language model too: an OpenAI-compatible endpoint, e.g. http://127.0.0.1:8000/v1 "
+                     "(default: $EFC_VLM_ENDPOINT; off when empty)");
+  inferc->add_option("--threads", infer.threads, "worker threads (default 2)");
+  add_common(inferc, &common, &format);
+
   std::vector<std::string> fmt_files;
   bool fmt_check = false;
   CLI::App* fmt = app.add_subcommand("fmt", "rewrite .efc (and .json) specs in canonical form");
@@ -162,6 +175,15 @@ int run_cli(int argc, char** argv) {
   evalc->add_option("--gt-seq", evals.gt_seq, "true sequence (its masks/)");
   evalc->add_flag("--json", evals.json, "print one JSON object instead of tables");
   add_common(evalc, &common, &format);
+
+  // Parsed here only for --help and usage errors; the importer program
+  // (cli/import_egofun3d.cc) gets the arguments as they were given.
+  std::string ego_dataset, ego_output;
+  CLI::App* egofun3dc = app.add_subcommand(
+      "import-egofun3d", "one sequence (with truth/) per video of an EgoFun3D-layout dataset");
+  egofun3dc->add_option("DATASET", ego_dataset, "the dataset folder (holds dataset_metadata.json)")->required();
+  egofun3dc->add_option("-o,--output", ego_output, "folder to write one sequence per video into")->required();
+  add_common(egofun3dc, &common, &format);
 
   std::string code;
   bool list = false;
@@ -196,6 +218,14 @@ int run_cli(int argc, char** argv) {
   if (*evalc) return cmd_eval(report, evals);
   if (*synthc) return cmd_synth(report, synth);
   if (*articulatec) return cmd_articulate(report, track, track_format);
+  if (*egofun3dc) {
+    std::vector<std::string> args;
+    int k = 1;
+    while (k < argc && std::strcmp(argv[k], "import-egofun3d") != 0) ++k;
+    for (++k; k < argc; ++k) args.push_back(argv[k]);
+    return cmd_import_egofun3d(report, args);
+  }
+  if (*inferc) return cmd_infer(report, infer);
   if (*suitec) return cmd_synth_suite(report, suite);
   return kExitUsage;
 }

@@ -31,6 +31,14 @@ struct EvalArgs {
 };
 int cmd_eval(Report& report, const EvalArgs& args);
 
+// efc infer (cli/infer.cc): a recording in, a spec out.
+struct InferArgs {
+  std::string sequence, output, vlm;
+  bool report = false, no_hands = false;
+  int threads = 2;
+};
+int cmd_infer(Report& report, const InferArgs& args);
+
 struct PlayArgs {
   std::string spec, profile, csv, render, plot;
   double duration = 0, dt = 0.002, fps = 30;
@@ -72,6 +80,10 @@ int check_synth_options(Report& report, const SynthArgs& args);
 synth::SynthOptions synth_options(Report& report, const SynthArgs& args);
 
 int cmd_articulate(Report& report, const std::string& track, const std::string& format);
+
+// efc import-egofun3d (cli/import_egofun3d.cc): execs efc-import-egofun3d,
+// built next to efc, with `args` (everything after the subcommand's name).
+int cmd_import_egofun3d(Report& report, const std::vector<std::string>& args);
 
 // Shared by play, parity and replay (run_options.cc): checks --duration and
 // --dt (a positive duration of at most 1e5 s, 0 < dt <= 0.1 s, dt <= duration,

@@ -444,6 +444,47 @@ const std::vector<CodeInfo>& all_codes() {
        "Telling fixed, revolute and prismatic apart needs at least 3 samples (and\n"
        "in practice a good part of the motion).\n"
        "Fix: record more of the motion."},
+      {"E1050", "efc infer needs depth",
+       "efc infer works on 3D points: every frame needs a depth map (depth/NNNNNN.png,\n"
+       "16-bit, metres = value x depth_scale). Recordings without depth (the EgoFun3D\n"
+       "videos) need an external monocular depth model's maps written there.\n"
+       "Fix: put one depth PNG per frame in SEQ/depth/."},
+      {"E1051", "efc infer needs camera poses",
+       "Parts are registered in one world frame, so every frame needs its camera-to-\n"
+       "world pose (poses.txt, TUM lines), e.g. from SLAM or visual odometry.\n"
+       "Fix: write SEQ/poses.txt, one line per frame."},
+      {"E1052", "a part has no masks",
+       "meta.json lists a part, but masks/<part>/ does not exist, so efc infer\n"
+       "cannot tell its pixels; the part is left out of the inferred object.\n"
+       "Fix: supply an external segmenter's masks in masks/<part>/."},
+      {"E1053", "no part masks at all",
+       "efc infer needs to know which pixels belong to which part: masks/<part>/ for\n"
+       "the parts of meta.json (or masks/receptor, masks/effector, masks/object).\n"
+       "Without any, it falls back to what moves in the depth once the camera's own\n"
+       "motion is taken out (a warning): one part 'moving' on a body 'body', with no\n"
+       "names and the hand not told apart. When nothing moves either, it is an error.\n"
+       "Fix: run a video segmenter and write its masks there."},
+      {"E1054", "the inferred spec does not check",
+       "efc infer checks the spec it built with the compiler before writing it; this\n"
+       "error means a defect of efc infer on this recording. Nothing was written.\n"
+       "Fix: report it with the sequence; the notes show what the compiler said."},
+      {"E1055", "a function is left out of the inferred spec",
+       "A function needs a receptor that moves and both its parts reconstructed. When\n"
+       "the recording never shows the receptor moving, efc infer does not invent a\n"
+       "joint for it: the part is fixed and the function is left out.\n"
+       "Fix: record the receptor being operated, in view of the camera."},
+      {"E1056", "no static part named",
+       "efc infer registers the camera on the parts with the role 'object' (the body).\n"
+       "Without one, the part seen most is taken as the static body.\n"
+       "Fix: give the body the role \"object\" in meta.json's \"parts\"."},
+      {"E1057", "the static body is not seen well enough",
+       "The camera poses are corrected by registering each frame on the static parts;\n"
+       "that needs their masks and depth readings in many frames.\n"
+       "Fix: check the 'object' masks and the depth maps."},
+      {"E1058", "a part could not be reconstructed",
+       "A part needs depth readings inside its mask in several frames to get a\n"
+       "surface and a closed mesh; this one did not, so it is left out.\n"
+       "Fix: check the part's masks and depth, or film it from closer."},
       {"E1010", "the spec cannot be filmed by efc synth",
        "efc synth writes one mask folder per part and one for the hand (masks/hand/),\n"
        "so a part named 'hand' would share the hand's folder.\n"
@@ -466,10 +507,105 @@ const std::vector<CodeInfo>& all_codes() {
        "efc eval --list could not open the file (it does not exist, is a folder, or is\n"
        "not readable).\n"
        "Fix: check the path."},
+      // -------------------------------------------- function templates (warnings)
+      {"E1060", "a function's receptor does not move",
+       "efc infer reads a function's mapping from how its effect follows the receptor's\n"
+       "joint position. The receptor is not among the parts, has no movable joint, or\n"
+       "never moved in the recording, so the template is a guess with low confidence.\n"
+       "Fix: record the receptor being operated through its range."},
+      {"E1061", "a function's effector is never seen",
+       "No frame shows pixels of the effector's mask (masks/<effector>/), so its glow\n"
+       "and colour cannot be measured; the effect is judged from its joint and its\n"
+       "surroundings only.\n"
+       "Fix: keep the effector in view, or supply its masks."},
+      {"E1062", "no signal follows the receptor",
+       "None of the effector's signals (its joint, brightness, redness, droplets below\n"
+       "it, air motes around it) is explained by the receptor better than by noise (BIC\n"
+       "gain under 10). The effect is guessed as temperature (a slow heater may not\n"
+       "glow within the clip) with low confidence.\n"
+       "Fix: a longer recording, the effector in view while it responds."},
+      {"E1063", "the vision-language model gave no usable answer",
+       "The optional adapter (--vlm-endpoint) could not reach the server, got an HTTP\n"
+       "error, or a reply without the JSON asked for ({\"effect\", \"mapping\"}). The\n"
+       "data-driven answer stands.\n"
+       "Fix: check the endpoint, the model name and EFC_VLM_API_KEY."},
+      {"E1064", "the vision-language adapter is unavailable",
+       "The adapter loads libcurl at run time (libcurl.so.4) and needs <curl/curl.h> at\n"
+       "build time; one of them is missing, so the endpoint is ignored.\n"
+       "Fix: install libcurl4 (and libcurl4-openssl-dev to build), or leave it unset."},
+      {"E1065", "frames unreadable for the function templates",
+       "Some rgb frames could not be read; the function templates use the others.\n"
+       "Fix: efc check-sequence SEQ names each bad file."},
       {"E1023", "predicted mask unreadable or of the wrong size",
        "A predicted mask DIR/masks/<part>/NNNNNN.png must be an 8-bit grey PNG of the\n"
        "true sequence's frame size (a missing frame counts as an empty mask).\n"
        "Fix: write the masks at the sequence's width and height, 8-bit grey."},
+      {"E1040", "EgoFun3D dataset_metadata.json missing or invalid",
+       "efc import-egofun3d DATASET reads DATASET/dataset_metadata.json: a list with one\n"
+       "entry per video holding video_name, function_instance_id, cropped_video_path (or\n"
+       "original_video_path), camera_extrinsics_path, camera_intrinsics_path,\n"
+       "video_mask_path, geometry_type, geometry_path, part_annotation_path,\n"
+       "articulation_path and function_annotation_path (paths relative to DATASET).\n"
+       "The file is missing (exit 2), not a list, or an entry lacks a key or has one of\n"
+       "the wrong type; or two video names give the same sequence folder. A bad entry\n"
+       "fails its video only.\n"
+       "  {\"video_name\": \"kitchen_01\", \"camera_extrinsics_path\": 3, ...}   <- not a string\n"
+       "Fix: correct the entry the position points at."},
+      {"E1041", "EgoFun3D video cannot be decoded",
+       "The video an entry names does not exist, is not a file FFmpeg opens, has no video\n"
+       "stream (or none the installed decoders read), or fails to decode part-way.\n"
+       "Fix: check the path (relative to DATASET) and that `ffprobe FILE` reads it."},
+      {"E1042", "EgoFun3D camera extrinsics invalid",
+       "camera_extrinsics_path must be a NumPy .npy file (version 1.0-3.0, dtype '<f8' or\n"
+       "'<f4', fortran_order False) of shape (N, 4, 4): one camera-to-world matrix per\n"
+       "frame of the video, each a rigid transform. The header, the shape, the count N\n"
+       "against the video's frames, or a matrix is wrong.\n"
+       "  shape (120, 3, 4)   <- not (N, 4, 4)\n"
+       "Fix: numpy.save(path, extrinsics.astype('<f8')) with one 4x4 matrix per frame."},
+      {"E1043", "EgoFun3D camera intrinsics invalid",
+       "camera_intrinsics_path holds undistorted_intrinsics (3x3) and original_frame_size\n"
+       "[W, H]; a cropped video also needs cropped_intrinsics, cropped_top_left and\n"
+       "cropped_bottom_right ([x, y], the bottom-right corner exclusive). A key is missing,\n"
+       "a matrix is not [[fx, 0, cx], [0, fy, cy], [0, 0, 1]], the crop box leaves the\n"
+       "frame, or the video's frames are not the size these describe.\n"
+       "Fix: correct the file, or point the entry at the video it belongs to."},
+      {"E1044", "EgoFun3D mask file invalid",
+       "video_mask_path is an HDF5 file with one group per part: an integer attribute\n"
+       "mask_idx (3 receptor, 4 effector, 5 object) and a dataset masks of shape (T, H, W).\n"
+       "The file is missing or not HDF5, a group lacks mask_idx or masks, T differs from\n"
+       "the video's frame count, or H x W is neither the original frame nor the video's.\n"
+       "  /knob/masks: masks has 118 frames (T), the video has 120\n"
+       "Fix: write one mask per frame, at the original frame size (cropped on import)."},
+      {"E1045", "EgoFun3D geometry PLY invalid",
+       "geometry_path must be a PLY file, ascii or binary_little_endian, with a vertex\n"
+       "element holding x, y and z and optionally a face element with vertex_indices. The\n"
+       "header or the data is malformed, or a face names a vertex that does not exist.\n"
+       "Fix: re-export the geometry (e.g. with Open3D's write_triangle_mesh)."},
+      {"E1046", "EgoFun3D annotation invalid",
+       "The part annotation must hold the video's function_instance_id with receptor and\n"
+       "effector, each {label, indices, pid} (indices into the PLY's vertices); the\n"
+       "articulation file a list of {pid, type, axis, origin, rangeMin, rangeMax} (type\n"
+       "revolute, prismatic, continuous or fixed; rangeMin < rangeMax); the function\n"
+       "annotation {function_instance_id, physics, func} with physics in geometry,\n"
+       "illumination, temperature, fluid and func in binary, step, linear, cumulative.\n"
+       "  \"physics\": \"heat\"   <- unknown\n"
+       "Fix: correct the value the position points at."},
+      {"E1047", "EgoFun3D annotations make no valid spec",
+       "The importer builds truth/spec.json from the geometry and annotations of a video\n"
+       "and checks it as efc check would; it failed (the message names the compiler's\n"
+       "code, e.g. E0305 for a receptor without a movable joint: the articulation file\n"
+       "has no entry for the receptor's pid, or a fixed one).\n"
+       "Fix: complete the articulation annotation; `efc explain` the named code."},
+      {"E1048", "EgoFun3D import cannot write its output",
+       "The output folder, a frame or a truth file could not be written (exit 2), or the\n"
+       "written sequence failed the sequence checks (a defect: please report it).\n"
+       "Nothing is left behind for that video.\n"
+       "Fix: check the output folder's permissions and free space."},
+      {"E1049", "the EgoFun3D importer program is missing",
+       "efc import-egofun3d runs the program efc-import-egofun3d, built next to efc, so\n"
+       "that the efc program itself does not load FFmpeg and HDF5. It was not built\n"
+       "(FFmpeg or HDF5 missing at configure time, or only the efc target was built).\n"
+       "Fix: scripts/setup, then cmake --build build --target efc-import-egofun3d."},
       // ---------------------------------------------------------------- warnings
       {"W0103", "mesh is not closed",
        "The mesh has holes or edges not shared by exactly two triangles, so its\n"

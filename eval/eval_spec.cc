@@ -1,6 +1,8 @@
 #include "eval/eval_spec.h"
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "compiler/core/load.h"
 
@@ -22,10 +24,42 @@ std::optional<PlacedSpec> load_placed(const std::string& path, bool allow_absolu
 
 }  // namespace
 
+// A truth spec inside a sequence's truth/ folder is in its own object frame
+// and its place in the world is truth/object_pose.json (sequence.md): used
+// when the spec itself has no "x-efc-object-to-world".
+static bool pose_beside(const std::string& spec_path, Diagnostics& diags, WorldFrame* out) {
+  const std::filesystem::path pose = std::filesystem::path(spec_path).parent_path() / "object_pose.json";
+  std::ifstream in(pose);
+  if (!in) return true;
+  const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
+  const auto bad = [&](const std::string& why) {
+    diags.error("E1020", pose.string(), 0, 0, "/object_to_world", why, "write 16 numbers, row-major, last row [0, 0, 0, 1]");
+    return false;
+  };
+  if (doc.is_discarded() || !doc.is_object() || !doc.contains("object_to_world")) return bad("no \"object_to_world\" in it");
+  const nlohmann::json& v = doc["object_to_world"];
+  if (!v.is_array() || v.size() != 16) return bad("\"object_to_world\" must be an array of 16 numbers");
+  double m[16];
+  for (int i = 0; i < 16; ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) return bad("element " + std::to_string(i) + " is not a finite number");
+    m[i] = v[i].get<double>();
+  }
+  if (m[12] != 0 || m[13] != 0 || m[14] != 0 || m[15] != 1) return bad("the last row is not 0 0 0 1");
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out->rotation[r][c] = m[4 * r + c];
+    out->translation[r] = m[4 * r + 3];
+  }
+  return true;
+}
+
 std::optional<PlacedSpec> load_truth(const std::string& path, bool allow_absolute_paths, Diagnostics& diags,
                                      bool* io_error) {
   *io_error = false;
-  return load_placed(path, allow_absolute_paths, diags, io_error);
+  std::optional<PlacedSpec> placed = load_placed(path, allow_absolute_paths, diags, io_error);
+  if (placed && !placed->object.extensions.count("x-efc-object-to-world") &&
+      !pose_beside(path, diags, &placed->world))
+    return std::nullopt;
+  return placed;
 }
 
 std::optional<PlacedSpec> load_prediction(const std::string& path, bool allow_absolute_paths, std::string* why) {

@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 TEST(CodeCatalogue, EveryEmittedCodeIsExplained) {
   const std::regex code_literal("\"([EW][0-9]{4})\"");
   int seen = 0;
-  for (const char* dir : {"compiler", "backends", "harness", "cli", "eval", "sequence", "synth"}) {
+  for (const char* dir : {"compiler", "backends", "harness", "cli", "eval", "sequence", "synth", "pipeline"}) {
     for (const auto& e : fs::recursive_directory_iterator(fs::path(EFC_SOURCE_DIR) / dir)) {
       if (e.path().extension() != ".cc" || e.path().filename() == "codes.cc") continue;
       std::ifstream in(e.path());

@@ -117,6 +117,30 @@ TEST(EvalCli, TheObjectToWorldExtensionIsApplied) {
   EXPECT_EQ(as_pred["failures"], 2);
 }
 
+TEST(EvalCli, ATruthSpecTakesItsPoseFromObjectPoseJsonBesideIt) {
+  // A sequence's truth/: spec.json in its own frame, object_pose.json
+  // placing it 10 cm up; the prediction says the same with the extension.
+  TempDir dir;
+  fs::create_directories(dir.path("truth"));
+  const std::string gt = dir.write("truth/spec.json", lamp_json().dump());
+  dir.write("truth/object_pose.json", R"({"object_to_world": [1,0,0,0, 0,1,0,0, 0,0,1,0.1, 0,0,0,1]})");
+  json pred = lamp_json();
+  pred["x-efc-object-to-world"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.1, 0, 0, 0, 1};
+  const json r = eval_json("--pred " + dir.write("pred.json", pred.dump()) + " --gt " + gt);
+  EXPECT_NEAR(joint(r, "head")["origin_error_m"].get<double>(), 0.0, 1e-9);
+  for (const json& c : r["chamfer"]) EXPECT_NEAR(c["cd_m2"].get<double>(), 0.0, 1e-12);
+  // Without the pose file the truth stays where its spec puts it.
+  fs::remove(dir.path("truth/object_pose.json"));
+  EXPECT_NEAR(joint(eval_json("--pred " + dir.path("pred.json") + " --gt " + gt), "head")["origin_error_m"].get<double>(),
+              0.1, 1e-9);
+  // A malformed pose file is a located error for the truth.
+  dir.write("truth/object_pose.json", R"({"object_to_world": [1, 2]})");
+  const auto bad = run_efc("eval --pred " + dir.path("pred.json") + " --gt " + gt);
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("object_pose.json"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("error[E1020]"), std::string::npos) << bad.err;
+}
+
 TEST(EvalCli, AMissingPredictionScoresFailures) {
   TempDir dir;
   const auto r = run_efc("eval --json --pred " + dir.path("nothing.json") + " --gt " + kLamp);

@@ -305,7 +305,9 @@ ModelFit fit_revolute_poses(const Track& track, HingeFit* hinge) {
 
 }  // namespace
 
-Articulation estimate_articulation(const Track& track) {
+Articulation estimate_articulation(const Track& track) { return estimate_articulation_as(track, ""); }
+
+Articulation estimate_articulation_as(const Track& track, const std::string& forced) {
   Articulation a;
   a.samples = track.size();
   if (track.size() < 3) return a;
@@ -326,7 +328,11 @@ Articulation estimate_articulation(const Track& track) {
 
   const size_t n = track.size();
   const Vector3d centroid = mean_of(track.positions);
-  if (a.revolute.valid && a.revolute.bic == best) {
+  const bool choose_revolute = forced.empty() ? a.revolute.valid && a.revolute.bic == best
+                                              : forced == "revolute" && a.revolute.valid;
+  const bool choose_prismatic = forced.empty() ? a.prismatic.valid && a.prismatic.bic == best
+                                               : forced == "prismatic" && a.prismatic.valid;
+  if (choose_revolute) {
     a.type = "revolute";
     // Positive from the first sample to the last.
     const double sign = hinge.theta.back() < 0 ? -1.0 : 1.0;
@@ -337,9 +343,10 @@ Articulation estimate_articulation(const Track& track) {
     for (double t : hinge.theta) {
       a.range_lo = std::min(a.range_lo, sign * t);
       a.range_hi = std::max(a.range_hi, sign * t);
+      a.q.push_back(sign * t);
     }
     a.residual = std::sqrt(a.revolute.rss_position / n);
-  } else if (a.prismatic.valid && a.prismatic.bic == best) {
+  } else if (choose_prismatic) {
     a.type = "prismatic";
     const double sign = line.t.back() < line.t.front() ? -1.0 : 1.0;
     a.axis = sign * line.direction;
@@ -348,6 +355,7 @@ Articulation estimate_articulation(const Track& track) {
     for (double t : line.t) {
       lo = std::min(lo, sign * (t - line.t.front()));
       hi = std::max(hi, sign * (t - line.t.front()));
+      a.q.push_back(sign * (t - line.t.front()));
     }
     a.range_lo = lo, a.range_hi = hi;
     a.residual = std::sqrt(a.prismatic.rss_position / n);

@@ -22,6 +22,7 @@
 #include <Eigen/Geometry>
 
 #include <string>
+#include <vector>
 
 #include "pipeline/articulation/track.h"
 
@@ -47,6 +48,9 @@ struct Articulation {
   // Posterior probability of each model (softmax of -BIC / 2).
   double p_fixed = 0, p_prismatic = 0, p_revolute = 0;
   size_t samples = 0;
+  // The chosen model's joint coordinate of every sample (rad or m; the first
+  // sample at 0, positive along `axis`); empty for fixed.
+  std::vector<double> q;
 };
 
 // Tracker precision floors (the residuals' smallest standard deviation).
@@ -54,6 +58,10 @@ constexpr double kPositionFloor = 0.001;  // m
 constexpr double kRotationFloor = 0.0175;  // rad (1 degree)
 
 Articulation estimate_articulation(const Track& track);
+// The same with the model given ("fixed", "prismatic" or "revolute") rather
+// than chosen: the scores are still every model's (efc infer fuses the
+// scores of several tracks, then asks each for the chosen model's geometry).
+Articulation estimate_articulation_as(const Track& track, const std::string& type);
 
 // The result as `efc articulate` prints it (shared/spec/cli.md).
 std::string articulation_json(const Articulation& a);

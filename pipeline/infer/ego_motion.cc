@@ -1,0 +1,178 @@
+#include "pipeline/infer/ego_motion.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "pipeline/cloud/filters.h"
+#include "pipeline/cloud/fusion.h"
+#include "pipeline/cloud/icp.h"
+#include "pipeline/cloud/kdtree.h"
+
+namespace efc::pipeline {
+
+Eigen::Isometry3d mean_transform(const std::vector<Eigen::Isometry3d>& transforms) {
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  if (transforms.empty()) return out;
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+  for (const Eigen::Isometry3d& T : transforms) {
+    t += T.translation();
+    Eigen::Quaterniond q(T.linear());
+    Eigen::Vector4d v(q.w(), q.x(), q.y(), q.z());
+    Q += v * v.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Q);
+  Eigen::Vector4d v = eig.eigenvectors().col(3);
+  out.linear() = Eigen::Quaterniond(v(0), v(1), v(2), v(3)).normalized().toRotationMatrix();
+  out.translation() = t / static_cast<double>(transforms.size());
+  return out;
+}
+
+namespace {
+
+Cloud static_cloud(const Observations& obs, const std::vector<int>& parts, int frame) {
+  Cloud c;
+  for (int p : parts) c = concatenate(c, obs.parts[p].clouds[frame]);
+  return c;
+}
+
+// Registers one frame onto `model` from `init`.
+void register_one(const Observations& obs, const std::vector<int>& parts, const Cloud& model, const KdTree& tree,
+                  const IcpOptions& icp, bool coarse_first, int f, const Eigen::Isometry3d& init, EgoMotion* out) {
+  const Cloud c = static_cloud(obs, parts, f);
+  if (c.size() < 50) {
+    out->registered[f] = false;
+    out->correction[f] = init;
+    return;
+  }
+  IcpResult r;
+  r.transform = init;
+  if (coarse_first) {
+    // The drift can be a few centimetres.
+    IcpOptions coarse = icp;
+    coarse.max_correspondence = 0.08;
+    coarse.kernel_scale = 0.02;
+    coarse.max_iterations = 15;
+    r = icp_point_to_plane(c, model, tree, init, coarse);
+  }
+  r = icp_point_to_plane(c, model, tree, r.transform, icp);
+  out->registered[f] = r.inlier_fraction > 0.3 && r.correspondences >= 30;
+  out->correction[f] = out->registered[f] ? r.transform : init;
+  out->rmse[f] = r.rmse;
+  out->inliers[f] = r.inlier_fraction;
+}
+
+// Pass 1: every frame onto the reference frame's points, chained outward
+// from the reference so a frame starts where its neighbour ended.
+void register_chained(const Observations& obs, const std::vector<int>& parts, const Cloud& model,
+                      const IcpOptions& icp, int reference, EgoMotion* out) {
+  const KdTree tree(model.points);
+  const int n = static_cast<int>(obs.times.size());
+  register_one(obs, parts, model, tree, icp, true, reference, out->correction[reference], out);
+  for (int f = reference + 1; f < n; ++f) register_one(obs, parts, model, tree, icp, true, f, out->correction[f - 1], out);
+  for (int f = reference - 1; f >= 0; --f) register_one(obs, parts, model, tree, icp, true, f, out->correction[f + 1], out);
+}
+
+// Pass 2: every frame onto the fused model from its pass-1 correction; the
+// frames are independent now, so they run in parallel.
+void register_refined(const Observations& obs, const std::vector<int>& parts, const Cloud& model,
+                      const IcpOptions& icp, int threads, EgoMotion* out) {
+  const KdTree tree(model.points);
+  const int n = static_cast<int>(obs.times.size());
+  const std::vector<Eigen::Isometry3d> start = out->correction;
+  std::atomic<int> next{0};
+  auto worker = [&]() {
+    for (int f = next++; f < n; f = next++) register_one(obs, parts, model, tree, icp, false, f, start[f], out);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+}  // namespace
+
+EgoMotion refine_ego_motion(const Observations& obs, const std::vector<int>& static_parts, int threads,
+                            const ProgressFn& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  EgoMotion out;
+  const int n = static_cast<int>(obs.times.size());
+  out.correction.assign(n, Eigen::Isometry3d::Identity());
+  out.registered.assign(n, false);
+  out.rmse.assign(n, 0);
+  out.inliers.assign(n, 0);
+  if (n == 0 || static_parts.empty()) return out;
+
+  // The reference: the frame that sees the most of the static parts.
+  size_t best = 0;
+  for (int f = 0; f < n; ++f) {
+    size_t s = 0;
+    for (int p : static_parts) s += obs.parts[p].clouds[f].size();
+    if (s > best) best = s, out.reference_frame = f;
+  }
+  if (out.reference_frame < 0) return out;
+
+  IcpOptions icp;
+  icp.max_correspondence = 0.03;
+  icp.kernel_scale = 0.006;
+  icp.max_iterations = 20;
+  icp.subsample = 1500;
+
+  // Pass 1: onto the reference frame's points.
+  Cloud model = static_cloud(obs, static_parts, out.reference_frame);
+  register_chained(obs, static_parts, model, icp, out.reference_frame, &out);
+  if (progress) progress("infer: camera poses registered (pass 1)");
+
+  // Pass 2: onto every registered frame fused (a surface seen from all
+  // sides, not one view's).
+  FusionOptions fo;
+  fo.voxel = 0.006;
+  fo.min_observations = 3;
+  PartFusion fusion(fo);
+  for (int f = 0; f < n; ++f) {
+    if (!out.registered[f]) continue;
+    Cloud c = static_cloud(obs, static_parts, f);
+    transform_cloud(out.correction[f], &c);
+    fusion.add_frame(c);
+  }
+  Cloud fused = fusion.fused();
+  if (fused.size() >= 200 && fused.has_normals()) {
+    model = std::move(fused);
+    register_refined(obs, static_parts, model, icp, threads, &out);
+  }
+  if (progress) progress("infer: camera poses registered (pass 2)");
+
+  // Frames that could not be registered take their nearest registered
+  // neighbour's correction.
+  for (int f = 0; f < n; ++f) {
+    if (out.registered[f]) continue;
+    int best_f = -1;
+    for (int d = 1; d < n && best_f < 0; ++d) {
+      if (f - d >= 0 && out.registered[f - d]) best_f = f - d;
+      else if (f + d < n && out.registered[f + d]) best_f = f + d;
+    }
+    if (best_f >= 0) out.correction[f] = out.correction[best_f];
+  }
+
+  // Anchor: drift is zero at the start, so the corrections of the first
+  // second should be the identity; make their mean so.
+  const double t0 = obs.times.front();
+  std::vector<Eigen::Isometry3d> early;
+  for (int f = 0; f < n; ++f) {
+    if (!out.registered[f]) continue;
+    if (obs.times[f] - t0 > 1.0 && early.size() >= 5) break;
+    early.push_back(out.correction[f]);
+  }
+  const Eigen::Isometry3d anchor = mean_transform(early).inverse();
+  for (Eigen::Isometry3d& T : out.correction) T = anchor * T;
+  transform_cloud(anchor, &model);
+  out.model = std::move(model);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace efc::pipeline

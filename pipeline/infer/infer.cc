@@ -1,0 +1,375 @@
+#include "pipeline/infer/infer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <thread>
+
+#include "pipeline/cloud/kdtree.h"
+#include "pipeline/infer/ego_motion.h"
+#include "pipeline/infer/joint_estimate.h"
+#include "pipeline/infer/part_tracking.h"
+#include "pipeline/infer/reconstruction.h"
+#include "pipeline/infer/spec_assembly.h"
+
+namespace efc::pipeline {
+
+namespace {
+
+using ojson = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The hand holds a part when its contact point lies this close to the
+// part's surface: the hand detector's error (~1 cm per axis) and the grasp
+// point sitting on the part.
+constexpr double kContactDistance = 0.03;
+
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+ojson vec(const Eigen::Vector3d& v) { return ojson::array({v.x(), v.y(), v.z()}); }
+
+// The object frame: z against gravity, x along the world's x as far as
+// gravity allows, its origin under the centre of the static parts' bounding
+// box, on their lowest point.
+Eigen::Isometry3d object_frame(const Cloud& static_model, const std::array<double, 3>& gravity) {
+  Eigen::Vector3d up = -Eigen::Vector3d(gravity[0], gravity[1], gravity[2]);
+  if (!(up.norm() > 0)) up = Eigen::Vector3d::UnitZ();
+  up.normalize();
+  Eigen::Vector3d x = Eigen::Vector3d::UnitX() - up.x() * up;
+  if (x.norm() < 1e-6) x = Eigen::Vector3d::UnitY() - up.y() * up;
+  x.normalize();
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = up.cross(x);
+  R.col(2) = up;
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : static_model.points) box.extend(R.transpose() * p);
+  Eigen::Vector3d origin_local = Eigen::Vector3d::Zero();
+  if (!box.isEmpty()) origin_local = Eigen::Vector3d(box.center().x(), box.center().y(), box.min().z());
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = R;
+  T.translation() = R * origin_local;
+  return T;
+}
+
+// Untracked frames take the nearest tracked frame's motion (the part holds
+// still while it is out of sight, as far as we can tell).
+std::vector<Eigen::Isometry3d> filled_motion(const PartTrack& t) {
+  const int n = static_cast<int>(t.motion.size());
+  std::vector<Eigen::Isometry3d> out = t.motion;
+  for (int f = 0; f < n; ++f) {
+    if (t.tracked[f]) continue;
+    for (int d = 1; d < n; ++d) {
+      if (f - d >= 0 && t.tracked[f - d]) { out[f] = t.motion[f - d]; break; }
+      if (f + d < n && t.tracked[f + d]) { out[f] = t.motion[f + d]; break; }
+    }
+  }
+  return out;
+}
+
+ojson stage(const std::string& name, double seconds) {
+  ojson s;
+  s["name"] = name;
+  s["seconds"] = seconds;
+  return s;
+}
+
+ojson joint_report(const JointEstimate& j) {
+  ojson r;
+  r["type"] = j.type;
+  r["source"] = j.source;
+  r["confidence"] = j.confidence;
+  if (j.type != "fixed") {
+    r["axis"] = vec(j.axis);
+    r["origin"] = vec(j.origin);
+    r["range"] = ojson::array({j.range_lo, j.range_hi});
+  }
+  auto fits = [](const Articulation& a) {
+    ojson f;
+    f["type"] = a.type;
+    f["samples"] = a.samples;
+    f["residual_m"] = a.residual;
+    f["p"] = {{"fixed", a.p_fixed}, {"prismatic", a.p_prismatic}, {"revolute", a.p_revolute}};
+    return f;
+  };
+  r["bic"] = {{"fixed", j.bic_fixed}, {"prismatic", j.bic_prismatic}, {"revolute", j.bic_revolute}};
+  if (j.has_part_track) r["from_part"] = fits(j.from_part);
+  if (j.has_hand_track) r["from_hand"] = fits(j.from_hand);
+  r["hand_samples"] = j.hand_samples;
+  if (j.has_part_track) r["part_visibility"] = j.part_visibility;
+  return r;
+}
+
+}  // namespace
+
+int infer_sequence(const std::string& sequence_dir, const InferOptions& options, Diagnostics& diags,
+                   InferResult* result) {
+  const auto t_all = Clock::now();
+  const ProgressFn& progress = options.progress;
+  seq::Sequence sequence;
+  if (!sequence.open(sequence_dir, diags)) return 1;
+  const seq::Meta& meta = sequence.meta();
+  const std::string meta_file = sequence.dir() + "/meta.json";
+  ojson report;
+  report["sequence"] = sequence.dir();
+  report["frames"] = meta.frames;
+  ojson stages = ojson::array();
+
+  // 1. Observations.
+  auto t0 = Clock::now();
+  Observations obs;
+  if (!observe(sequence, options.observe, diags, progress, &obs)) return 1;
+  if (!options.use_hands) obs.hands.clear();
+  {
+    ojson s = stage("observations", since(t0));
+    s["parts"] = obs.parts.size();
+    s["hand_track"] = !obs.hands.empty();
+    s["masks"] = obs.motion_masks ? "motion fallback" : "sequence";
+    stages.push_back(s);
+  }
+  const int n = meta.frames;
+
+  // 2. Ego-motion, on the static parts (role object; else the best-seen part).
+  t0 = Clock::now();
+  std::vector<int> static_parts, moving_parts;
+  for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p)
+    (obs.parts[p].role == "object" ? static_parts : moving_parts).push_back(p);
+  if (static_parts.empty()) {
+    int best = 0;
+    size_t most = 0;
+    for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
+      size_t s = 0;
+      for (const Cloud& c : obs.parts[p].clouds) s += c.size();
+      if (s > most) most = s, best = p;
+    }
+    static_parts.push_back(best);
+    moving_parts.erase(std::remove(moving_parts.begin(), moving_parts.end(), best), moving_parts.end());
+    diags.warning("E1056", meta_file, 0, 0, "/parts",
+                  "no part has the role 'object': '" + obs.parts[best].name +
+                      "' (seen most) is taken as the static body the camera is registered on");
+  }
+  const EgoMotion ego = refine_ego_motion(obs, static_parts, std::max(1, options.observe.threads), progress);
+  if (ego.model.size() < 100) {
+    diags.error("E1057", sequence.dir(), 0, 0, "",
+                "the static parts are not seen well enough to register the camera on them (" +
+                    std::to_string(ego.model.size()) + " points)",
+                "check the masks of the 'object' parts and the depth");
+    return 1;
+  }
+  const Eigen::Isometry3d object_to_world = object_frame(ego.model, meta.gravity);
+  const Eigen::Isometry3d world_to_object = object_to_world.inverse();
+  std::vector<Eigen::Isometry3d> to_object(n);
+  std::vector<Eigen::Isometry3d> camera_to_world(n);
+  for (int f = 0; f < n; ++f) {
+    to_object[f] = world_to_object * ego.correction[f];
+    camera_to_world[f] = ego.correction[f] * obs.camera_to_world[f];
+  }
+  {
+    ojson s = stage("ego_motion", ego.seconds);
+    int registered = 0;
+    double rmse = 0;
+    for (int f = 0; f < n; ++f)
+      if (ego.registered[f]) ++registered, rmse += ego.rmse[f] * ego.rmse[f];
+    s["frames_registered"] = registered;
+    s["rmse_m"] = registered ? std::sqrt(rmse / registered) : 0.0;
+    s["reference_frame"] = ego.reference_frame;
+    s["model_points"] = ego.model.size();
+    stages.push_back(s);
+  }
+  if (progress) progress("infer: camera registered on " + std::to_string(static_parts.size()) + " static part(s)");
+
+  // 3. Part motion, two parts at a time.
+  t0 = Clock::now();
+  std::vector<std::unique_ptr<PartTrack>> tracks(obs.parts.size());
+  {
+    std::atomic<size_t> next{0};
+    auto worker = [&]() {
+      for (size_t k = next++; k < moving_parts.size(); k = next++)
+        tracks[moving_parts[k]] = std::make_unique<PartTrack>(track_part(obs, moving_parts[k], to_object));
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < std::max(1, options.observe.threads); ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+  }
+  stages.push_back(stage("part_motion", since(t0)));
+  if (progress) progress("infer: part motion tracked (" + std::to_string(moving_parts.size()) + " parts)");
+
+  // 4. Joints: the hand's contact points go to the part they touch.
+  t0 = Clock::now();
+  const Eigen::Vector3d none = Eigen::Vector3d::Constant(kNaN);
+  std::vector<std::vector<Eigen::Vector3d>> hand_points(obs.parts.size(), std::vector<Eigen::Vector3d>(n, none));
+  if (!obs.hands.empty()) {
+    std::vector<std::unique_ptr<KdTree>> trees(obs.parts.size());
+    std::vector<std::vector<Eigen::Isometry3d>> motion(obs.parts.size());
+    for (int p : moving_parts)
+      if (tracks[p] && tracks[p]->model.size() > 0) {
+        trees[p] = std::make_unique<KdTree>(tracks[p]->model.points);
+        motion[p] = filled_motion(*tracks[p]);
+      }
+    for (int f = 0; f < n && f < static_cast<int>(obs.hands.size()); ++f) {
+      if (!obs.hands[f].seen) continue;
+      const Eigen::Vector3d h = world_to_object * Eigen::Vector3d(obs.hands[f].p[0], obs.hands[f].p[1], obs.hands[f].p[2]);
+      int owner = -1;
+      double best = kContactDistance * kContactDistance;
+      for (int p : moving_parts) {
+        if (!trees[p]) continue;
+        size_t idx;
+        double d2;
+        if (trees[p]->nearest(motion[p][f].inverse() * h, &idx, &d2) && d2 < best) best = d2, owner = p;
+      }
+      if (owner >= 0) hand_points[owner][f] = h;
+    }
+  }
+  std::vector<JointEstimate> joints(obs.parts.size());
+  for (int p : moving_parts)
+    if (tracks[p]) joints[p] = estimate_joint(*tracks[p], hand_points[p]);
+  stages.push_back(stage("articulation", since(t0)));
+  if (progress) progress("infer: joints estimated");
+
+  // 5. Reconstruction.
+  t0 = Clock::now();
+  std::vector<PartReconstruction> recon(obs.parts.size());
+  {
+    std::atomic<size_t> next{0};
+    auto worker = [&]() {
+      for (size_t p = next++; p < obs.parts.size(); p = next++)
+        recon[p] = reconstruct_part(obs, static_cast<int>(p), to_object, tracks[p].get(), &joints[p]);
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < std::max(1, options.observe.threads); ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+  }
+  stages.push_back(stage("reconstruction", since(t0)));
+  if (progress) progress("infer: parts reconstructed");
+
+  // The parts that made it: a mesh is needed for the spec.
+  int root = -1;
+  size_t root_points = 0;
+  for (int p : static_parts)
+    if (recon[p].ok && recon[p].fused.size() > root_points) root_points = recon[p].fused.size(), root = p;
+  if (root < 0) {
+    diags.error("E1057", sequence.dir(), 0, 0, "", "no static part could be reconstructed: there is no body to build on");
+    return 1;
+  }
+  std::vector<AssembledPart> assembled;
+  std::vector<int> part_of_assembled;
+  for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
+    if (!recon[p].ok) {
+      diags.warning("E1058", meta_file, 0, 0, "/parts/" + obs.parts[p].name,
+                    "part '" + obs.parts[p].name + "' is left out: it could not be reconstructed (" + recon[p].error + ")",
+                    "it needs depth readings inside its mask in several frames");
+      continue;
+    }
+    AssembledPart a;
+    a.name = spec_name(obs.parts[p].name);
+    a.role = obs.parts[p].role;
+    a.root = p == root;
+    a.joint = joints[p];
+    a.mesh = "meshes/" + a.name + ".obj";
+    a.parent = spec_name(obs.parts[root].name);
+    if (a.root) assembled.insert(assembled.begin(), a), part_of_assembled.insert(part_of_assembled.begin(), p);
+    else assembled.push_back(a), part_of_assembled.push_back(p);
+  }
+
+  // 6. Function templates.
+  t0 = Clock::now();
+  TemplateInput tin;
+  tin.sequence = &sequence;
+  tin.camera_to_world = camera_to_world;
+  tin.object_to_world = object_to_world;
+  tin.functions = meta.functions;
+  if (tin.functions.empty()) {
+    bool r = false, e = false;
+    for (const PartFrames& pf : obs.parts) r |= pf.name == "receptor", e |= pf.name == "effector";
+    if (r && e) tin.functions.push_back({"function", "receptor", "effector"});
+  }
+  for (size_t k = 0; k < assembled.size(); ++k) {
+    const int p = part_of_assembled[k];
+    const AssembledPart& a = assembled[k];
+    PartObservation po;
+    po.name = obs.parts[p].name;
+    po.role = a.role;
+    po.joint_type = a.root ? "fixed" : a.joint.type;
+    po.axis = a.joint.axis;
+    po.origin = a.joint.origin;
+    po.range_lo = a.joint.range_lo;
+    po.range_hi = a.joint.range_hi;
+    po.motion.assign(n, Eigen::Isometry3d::Identity());
+    if (po.joint_type != "fixed") {
+      po.q = a.joint.q;
+      for (int f = 0; f < n && f < static_cast<int>(po.q.size()); ++f) po.motion[f] = joint_motion(a.joint, po.q[f]);
+    }
+    po.bounds = recon[p].bounds;
+    po.surface = recon[p].fused.points;
+    tin.parts.push_back(std::move(po));
+  }
+  std::vector<InferredFunction> functions = infer_templates(tin, options.templates, diags);
+  stages.push_back(stage("templates", since(t0)));
+  if (progress) progress("infer: " + std::to_string(functions.size()) + " function template(s) inferred");
+
+  // 7. The spec.
+  std::string name = sequence.dir();
+  while (!name.empty() && name.back() == '/') name.pop_back();
+  name = name.substr(name.find_last_of('/') + 1);
+  result->spec = assemble_spec(name, "Inferred by efc infer from the recording " + name + ".", assembled, functions,
+                               object_to_world, meta_file, diags);
+  result->meshes.clear();
+  for (size_t k = 0; k < assembled.size(); ++k)
+    result->meshes.push_back({assembled[k].mesh, recon[part_of_assembled[k]].mesh});
+
+  // The report.
+  ojson jparts = ojson::array();
+  for (size_t k = 0; k < assembled.size(); ++k) {
+    const int p = part_of_assembled[k];
+    ojson jp;
+    jp["name"] = assembled[k].name;
+    jp["role"] = assembled[k].role;
+    int seen = 0;
+    for (const Cloud& c : obs.parts[p].clouds) seen += c.size() > 0;
+    jp["frames_seen"] = seen;
+    if (assembled[k].root) jp["root"] = true;
+    if (tracks[p]) {
+      const PartTrack& t = *tracks[p];
+      double rmse = 0;
+      for (int f = 0; f < n; ++f)
+        if (t.tracked[f]) rmse += t.rmse[f] * t.rmse[f];
+      jp["icp"] = {{"frames_tracked", t.frames_tracked},
+                   {"rmse_m", t.frames_tracked ? std::sqrt(rmse / t.frames_tracked) : 0.0},
+                   {"reference_frame", t.reference_frame},
+                   {"model_points", t.model.size()},
+
+                   {"seconds", t.seconds}};
+      jp["joint"] = joint_report(joints[p]);
+    } else {
+      jp["joint"] = {{"type", assembled[k].root ? "root" : "fixed"}, {"source", "static"}};
+    }
+    jp["mesh"] = {{"points", recon[p].fused.size()},
+                  {"vertices", recon[p].mesh.vertices.size()},
+                  {"volume_m3", recon[p].volume},
+                  {"frames_fused", recon[p].frames_fused}};
+    jparts.push_back(jp);
+  }
+  ojson jfun = ojson::array();
+  for (const InferredFunction& f : functions) {
+    ojson jf;
+    jf["name"] = f.name;
+    jf["confidence"] = f.confidence;
+    jf["mapping"] = ojson::parse(f.mapping.dump());
+    jf["effect"] = ojson::parse(f.effect.dump());
+    jf["report"] = ojson::parse(f.report.dump());
+    jfun.push_back(jf);
+  }
+  report["stages"] = stages;
+  report["parts"] = jparts;
+  report["functions"] = jfun;
+  report["seconds"] = since(t_all);
+  result->report = std::move(report);
+  return 0;
+}
+
+}  // namespace efc::pipeline

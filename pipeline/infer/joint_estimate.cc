@@ -1,0 +1,284 @@
+#include "pipeline/infer/joint_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace efc::pipeline {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kMinSamples = 5;
+constexpr int kHandBin = 5;
+
+double bic_of(const ModelFit& f) { return f.valid ? f.bic : std::numeric_limits<double>::infinity(); }
+
+// Fills the gaps of a per-frame series: linear between known values, held
+// before the first and after the last.
+void fill_gaps(std::vector<double>* q) {
+  const int n = static_cast<int>(q->size());
+  int last = -1;
+  for (int f = 0; f < n; ++f) {
+    if (std::isnan((*q)[f])) continue;
+    if (last >= 0 && f - last > 1)
+      for (int g = last + 1; g < f; ++g)
+        (*q)[g] = (*q)[last] + ((*q)[f] - (*q)[last]) * (g - last) / double(f - last);
+    else if (last < 0)
+      for (int g = 0; g < f; ++g) (*q)[g] = (*q)[f];
+    last = f;
+  }
+  if (last >= 0)
+    for (int g = last + 1; g < n; ++g) (*q)[g] = (*q)[last];
+}
+
+// The joint coordinate of a point on the part (revolute: its angle about the
+// axis; prismatic: its position along it).
+double coordinate(const std::string& type, const Eigen::Vector3d& axis, const Eigen::Vector3d& origin,
+                  const Eigen::Vector3d& ref_dir, const Eigen::Vector3d& p) {
+  if (type == "prismatic") return axis.dot(p - origin);
+  Eigen::Vector3d d = p - origin;
+  d -= d.dot(axis) * axis;
+  const Eigen::Vector3d e2 = axis.cross(ref_dir);
+  return std::atan2(d.dot(e2), d.dot(ref_dir));
+}
+
+// Joint positions from the hand's points: within a grasp (a run of frames
+// the hand holds the part) the coordinate changes as the hand moves; between
+// grasps the part holds still, and a new grasp may take it elsewhere, so
+// each grasp continues from where the last one left the joint.
+std::vector<double> q_from_hand(const JointEstimate& j, const std::vector<Eigen::Vector3d>& hand) {
+  const int n = static_cast<int>(hand.size());
+  std::vector<double> q(n, kNaN);
+  Eigen::Vector3d ref_dir = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& h : hand) {
+    if (std::isnan(h.x())) continue;
+    Eigen::Vector3d d = h - j.origin;
+    d -= d.dot(j.axis) * j.axis;
+    if (d.norm() > 1e-6) {
+      ref_dir = d.normalized();
+      break;
+    }
+  }
+  if (j.type != "prismatic" && ref_dir.norm() == 0) return q;
+  double held = 0, grasp_start = 0, raw_prev = 0;
+  bool in_grasp = false;
+  int last_seen = -100;
+  for (int f = 0; f < n; ++f) {
+    if (std::isnan(hand[f].x())) {
+      if (in_grasp && f - last_seen > 3) in_grasp = false;  // released
+      continue;
+    }
+    double raw = coordinate(j.type, j.axis, j.origin, ref_dir, hand[f]);
+    if (!in_grasp) {
+      in_grasp = true;
+      grasp_start = raw;
+      raw_prev = raw;
+    }
+    if (j.type != "prismatic") {  // unwrap within the grasp
+      while (raw - raw_prev > kPi) raw -= 2 * kPi;
+      while (raw - raw_prev < -kPi) raw += 2 * kPi;
+    }
+    raw_prev = raw;
+    q[f] = held + (raw - grasp_start);
+    last_seen = f;
+    // The next grasp starts where this one leaves the joint.
+    if (f + 1 >= n || std::isnan(hand[f + 1].x())) held = q[f], grasp_start = raw;
+  }
+  return q;
+}
+
+// A centred moving average over +-half frames (known values only): the
+// hand's per-frame noise is far larger than a joint's per-frame motion.
+std::vector<double> smoothed(const std::vector<double>& q, int half) {
+  const int n = static_cast<int>(q.size());
+  std::vector<double> out(n, kNaN);
+  for (int f = 0; f < n; ++f) {
+    if (std::isnan(q[f])) continue;
+    double sum = 0;
+    int count = 0;
+    for (int g = std::max(0, f - half); g <= std::min(n - 1, f + half); ++g)
+      if (!std::isnan(q[g])) sum += q[g], ++count;
+    out[f] = sum / count;
+  }
+  return out;
+}
+
+}  // namespace
+
+double visibility(const Cloud& surface, const std::string& type, const Eigen::Vector3d& axis,
+                  const Eigen::Vector3d& origin) {
+  if (!surface.has_normals() || surface.size() == 0) return 0;
+  // Displacement per unit of motion at p: along the axis (prismatic), or
+  // about the axis line through c.
+  auto share = [&](bool slide, const Eigen::Vector3d& a, const Eigen::Vector3d& c) {
+    double along = 0, total = 0;
+    for (size_t i = 0; i < surface.size(); ++i) {
+      const Eigen::Vector3d u = slide ? a : Eigen::Vector3d(a.cross(surface.points[i] - c));
+      along += std::pow(surface.normals[i].dot(u), 2);
+      total += u.squaredNorm();
+    }
+    return total > 0 ? along / total : 0.0;
+  };
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : surface.points) centre += p;
+  centre /= static_cast<double>(surface.size());
+  const Eigen::Vector3d a = axis.normalized();
+  // Two directions across the axis.
+  Eigen::Vector3d e1 = a.unitOrthogonal(), e2 = a.cross(e1);
+  const double generic = 0.5 * (share(false, e1, centre) + share(false, e2, centre));
+  if (!(generic > 0)) return 0;
+  const double mine = type == "prismatic" ? share(true, a, centre) : share(false, a, origin);
+  return mine / generic;
+}
+
+Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  if (j.type == "prismatic") {
+    T.translation() = q * j.axis;
+  } else if (j.type == "revolute" || j.type == "continuous") {
+    T.linear() = Eigen::AngleAxisd(q, j.axis).toRotationMatrix();
+    T.translation() = j.origin - T.linear() * j.origin;
+  }
+  return T;
+}
+
+JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points) {
+  JointEstimate j;
+  const int n = static_cast<int>(track.motion.size());
+  // The part's own track: the pose of its model's centroid per tracked frame.
+  Track part;
+  std::vector<int> part_frames;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : track.model.points) centroid += p;
+  if (!track.model.points.empty()) centroid /= static_cast<double>(track.model.points.size());
+  for (int f = 0; f < n; ++f) {
+    if (!track.tracked[f]) continue;
+    part.positions.push_back(track.motion[f] * centroid);
+    part.rotations.push_back(Eigen::Quaterniond(track.motion[f].linear()));
+    part_frames.push_back(f);
+  }
+  // The hand's track, averaged over runs of up to kHandBin consecutive
+  // contact frames: a hand detector's error (~1 cm) is far larger than a
+  // knob's or a lever's motion in one frame, while a joint barely moves in a
+  // sixth of a second. Averaging is a smoothness prior on the joint's
+  // motion: one latent position per bin, not per frame, and each bin's
+  // point sqrt(kHandBin) times more precise.
+  Track hand;
+  std::vector<int> hand_frames;
+  {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0, last = -2;
+    auto flush = [&]() {
+      if (count > 0) hand.positions.push_back(sum / count);
+      sum.setZero();
+      count = 0;
+    };
+    for (int f = 0; f < n && f < static_cast<int>(hand_points.size()); ++f) {
+      if (std::isnan(hand_points[f].x())) continue;
+      if (f - last > 2 || count == kHandBin) flush();
+      sum += hand_points[f];
+      ++count;
+      last = f;
+      hand_frames.push_back(f);
+    }
+    flush();
+  }
+  j.has_part_track = static_cast<int>(part.size()) >= kMinSamples;
+  j.has_hand_track = static_cast<int>(hand.size()) >= kMinSamples;
+  j.hand_samples = static_cast<int>(hand_frames.size());
+  if (j.has_part_track) j.from_part = estimate_articulation(part);
+  if (j.has_hand_track) j.from_hand = estimate_articulation(hand);
+  if (!j.has_part_track && !j.has_hand_track) return j;
+
+  // Which track speaks. The part's own motion, when it visibly moves
+  // (PartTrack::motion_visible) or visibly stays; the hand's where the part's
+  // track cannot tell (too few registered frames, or a motion its shape does
+  // not show: a round knob turning). Both tracks' scores are reported.
+  auto sum = [&](auto member) {
+    double s = 0;
+    if (j.has_part_track) s += bic_of(j.from_part.*member);
+    if (j.has_hand_track) s += bic_of(j.from_hand.*member);
+    return s;
+  };
+  j.bic_fixed = sum(&Articulation::fixed);
+  j.bic_prismatic = sum(&Articulation::prismatic);
+  j.bic_revolute = sum(&Articulation::revolute);
+  if (j.has_part_track && j.from_part.type != "fixed")
+    j.part_visibility = visibility(track.model, j.from_part.type, j.from_part.axis, j.from_part.origin);
+  const bool part_visible = j.has_part_track && (j.from_part.type == "fixed" || j.part_visibility >= kMinVisibility);
+  const bool part_decides = part_visible && j.from_part.type != "fixed";
+  const bool hand_decides = !part_decides && j.has_hand_track && j.from_hand.type != "fixed";
+  std::string type = "fixed";
+  const Articulation* decider = nullptr;
+  if (part_decides) type = j.from_part.type, decider = &j.from_part;
+  else if (hand_decides) type = j.from_hand.type, decider = &j.from_hand;
+  else if (j.has_part_track) decider = &j.from_part;
+  else if (j.has_hand_track) decider = &j.from_hand;
+  if (decider) {
+    j.confidence = type == "revolute" ? decider->p_revolute : type == "prismatic" ? decider->p_prismatic : decider->p_fixed;
+    if (type == "fixed" && j.has_part_track && !part_visible) j.confidence = 1.0;  // nothing shows a motion
+  }
+  if (type == "fixed") {
+    j.source = j.has_part_track ? "part" : "hand";
+    return j;
+  }
+
+  // Geometry from the part's own poses when they show this motion, else
+  // from the hand.
+  std::vector<double> q(n, kNaN);
+  if (part_decides) {
+    const Articulation& a = j.from_part;
+    j.source = "part";
+    j.type = type;
+    j.axis = a.axis;
+    j.origin = a.origin;
+    for (size_t k = 0; k < part_frames.size() && k < a.q.size(); ++k) q[part_frames[k]] = a.q[k];
+  } else {
+    const Articulation& a = j.from_hand;
+    j.source = "hand";
+    j.type = type;
+    j.axis = a.axis;
+    j.origin = a.origin;
+    std::vector<Eigen::Vector3d> h(n, Eigen::Vector3d::Constant(kNaN));
+    for (int f : hand_frames) h[f] = hand_points[f];
+    q = smoothed(q_from_hand(j, h), 4);
+  }
+  // q = 0 where the part was first seen; the model's reference frame maps
+  // there by the joint itself.
+  double q_first = kNaN;
+  for (double v : q)
+    if (!std::isnan(v)) {
+      q_first = v;
+      break;
+    }
+  if (std::isnan(q_first)) {
+    j.type = "fixed";
+    return j;
+  }
+  for (double& v : q)
+    if (!std::isnan(v)) v -= q_first;
+  fill_gaps(&q);
+  const int ref = track.reference_frame;
+  const double q_ref = ref >= 0 && ref < n && !q.empty() ? q[ref] : 0.0;
+  j.reference_to_zero = joint_motion(j, -q_ref);
+  // The range: the 2nd to the 98th percentile of the positions seen (and 0),
+  // so a few frames of tracker noise do not widen it.
+  {
+    std::vector<double> sorted = q;
+    std::sort(sorted.begin(), sorted.end());
+    const size_t m = sorted.size();
+    j.range_lo = std::min(0.0, sorted[static_cast<size_t>(0.02 * (m - 1))]);
+    j.range_hi = std::max(0.0, sorted[static_cast<size_t>(0.98 * (m - 1))]);
+  }
+  if (j.type == "revolute" && j.range_hi - j.range_lo > 2 * kPi) j.type = "continuous";
+  if (j.range_hi - j.range_lo < 1e-6) {
+    j.type = "fixed";
+    q.clear();
+  }
+  j.q = std::move(q);
+  return j;
+}
+
+}  // namespace efc::pipeline

@@ -1,0 +1,60 @@
+// efc infer, stage 4: each part's joint, from its own motion and the hand's.
+// Two tracks feed the articulation estimator (pipeline/articulation, BIC
+// model selection): the part's registered poses (stage 3) and the hand's
+// contact points in the frames the hand holds the part. The part's own
+// track decides when it can: when its points show the motion (or show that
+// there is none). Where they cannot (a round knob whose turn the depth does
+// not resolve, a part hidden under the hand in most frames), the hand's
+// track decides. A part neither shows moving is fixed. Both tracks' scores,
+// and their sum, are in the report.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include <string>
+#include <vector>
+
+#include "pipeline/articulation/articulation.h"
+#include "pipeline/infer/part_tracking.h"
+
+namespace efc::pipeline {
+
+struct JointEstimate {
+  std::string type = "fixed";  // fixed, revolute, continuous, prismatic
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();   // object frame, unit
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // a point on the axis (revolute)
+  double range_lo = 0, range_hi = 0;
+  // Per frame: the joint position (q = 0 in the first frame the part was
+  // seen), NaN before it was; empty for fixed.
+  std::vector<double> q;
+  // Maps the track's reference configuration to q = 0.
+  Eigen::Isometry3d reference_to_zero = Eigen::Isometry3d::Identity();
+  std::string source = "none";  // which track gave the geometry: part, hand, none
+  bool has_part_track = false, has_hand_track = false;
+  Articulation from_part, from_hand;
+  double bic_fixed = 0, bic_prismatic = 0, bic_revolute = 0;  // fused
+  double confidence = 0;  // posterior of the chosen type under the fused BIC
+  int hand_samples = 0;
+  // How much of the part track's motion its shape can show (visibility()).
+  double part_visibility = 0;
+};
+
+// How visible a joint's motion is on a part's surface: the share of the
+// motion's displacement that lies along the surface normals, relative to
+// that of generic motions (turns about two axes across it through the same
+// centre). About 1 for a door or a lever; near 0 for a surface of revolution
+// turning on its own axis (a ring, a plain knob) or a cylinder sliding along
+// it: registration noise there is not motion. A pointer ridge on a knob
+// makes its turn visible.
+double visibility(const Cloud& surface, const std::string& type, const Eigen::Vector3d& axis,
+                  const Eigen::Vector3d& origin);
+constexpr double kMinVisibility = 0.1;
+
+// The joint's rigid motion at position q (object frame).
+Eigen::Isometry3d joint_motion(const JointEstimate& joint, double q);
+
+// hand_points[f]: the hand's contact point in the object frame in the frames
+// it holds this part (NaN elsewhere).
+JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points);
+
+}  // namespace efc::pipeline

@@ -1,0 +1,162 @@
+#include "pipeline/infer/observations.h"
+
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <thread>
+
+#include "pipeline/cloud/depth_points.h"
+#include "pipeline/infer/motion_masks.h"
+
+namespace efc::pipeline {
+
+Eigen::Isometry3d pose_to_isometry(const seq::Pose& pose) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::Quaterniond(pose.q[3], pose.q[0], pose.q[1], pose.q[2]).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(pose.p[0], pose.p[1], pose.p[2]);
+  return T;
+}
+
+namespace {
+
+// Every k-th point, so a large part does not dominate memory and ICP time;
+// deterministic, spread over the whole mask.
+void thin(Cloud* cloud, int max_points) {
+  if (max_points <= 0 || static_cast<int>(cloud->size()) <= max_points) return;
+  const double step = static_cast<double>(cloud->size()) / max_points;
+  Cloud out;
+  out.points.reserve(max_points);
+  if (cloud->has_normals()) out.normals.reserve(max_points);
+  for (int i = 0; i < max_points; ++i) {
+    const size_t k = static_cast<size_t>(i * step);
+    out.points.push_back(cloud->points[k]);
+    if (cloud->has_normals()) out.normals.push_back(cloud->normals[k]);
+  }
+  *cloud = std::move(out);
+}
+
+}  // namespace
+
+bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagnostics& diags,
+             const ProgressFn& progress, Observations* out) {
+  const seq::Meta& meta = sequence.meta();
+  const std::string meta_file = sequence.dir() + "/meta.json";
+  bool ok = true;
+  if (!sequence.has_depth()) {
+    diags.error("E1050", sequence.dir(), 0, 0, "",
+                "efc infer needs depth: the sequence has no depth/ folder",
+                "put an external depth model's maps in " + sequence.dir() +
+                    "/depth/ (16-bit PNG, metres = value x depth_scale, one per frame)");
+    ok = false;
+  }
+  if (!sequence.has_poses()) {
+    diags.error("E1051", sequence.dir(), 0, 0, "",
+                "efc infer needs camera poses: the sequence has no poses.txt",
+                "write the camera-to-world pose of every frame (TUM lines) to " + sequence.dir() +
+                    "/poses.txt, e.g. from a SLAM or visual odometry run");
+    ok = false;
+  }
+  if (!ok) return false;
+
+  std::vector<seq::Pose> poses;
+  if (!sequence.read_poses(diags, &poses)) return false;
+  if (sequence.has_hands() && !sequence.read_hands(diags, &out->hands)) return false;
+  out->times.clear();
+  out->camera_to_world.clear();
+  for (const seq::Pose& p : poses) {
+    out->times.push_back(p.t);
+    out->camera_to_world.push_back(pose_to_isometry(p));
+  }
+
+  // Which parts, from which mask folders: meta.json's parts (the hand left
+  // out); without "parts", the role masks.
+  out->parts.clear();
+  const std::vector<std::string>& folders = sequence.mask_names();
+  auto has_folder = [&](const std::string& n) { return std::binary_search(folders.begin(), folders.end(), n); };
+  std::vector<std::pair<std::string, std::string>> parts = meta.parts;
+  if (parts.empty()) {
+    for (const char* role : {"object", "receptor", "effector"})
+      if (has_folder(role)) parts.push_back({role, role});
+  }
+  for (const auto& [name, role] : parts) {
+    if (role == "hand" || name == "hand") continue;
+    if (!has_folder(name)) {
+      diags.warning("E1052", meta_file, 0, 0, "/parts/" + name,
+                    "part '" + name + "' has no masks (masks/" + name + "/): it is left out of the object",
+                    "supply an external segmenter's masks in masks/" + name + "/");
+      continue;
+    }
+    PartFrames pf;
+    pf.name = name;
+    pf.role = role;
+    pf.mask = name;
+    pf.clouds.resize(meta.frames);
+    pf.pixels.assign(meta.frames, 0);
+    out->parts.push_back(std::move(pf));
+  }
+  if (out->parts.empty()) {
+    diags.warning("E1053", sequence.dir(), 0, 0, "",
+                  "no part masks (masks/<part>/): falling back to what moves in the depth once the camera's own "
+                  "motion is taken out; parts cannot be named or told from the hand this way",
+                  "supply an external segmenter's masks in masks/<part>/, one folder per part listed in meta.json");
+    if (!observe_by_motion(sequence, options, diags, progress, out)) return false;
+    bool moved = false;
+    for (const Cloud& c : out->parts.empty() ? std::vector<Cloud>{} : out->parts.back().clouds) moved |= c.size() > 0;
+    if (!moved) {
+      diags.error("E1053", sequence.dir(), 0, 0, "",
+                  "no part masks, and nothing in the depth moves: there is no part to find",
+                  "supply an external segmenter's masks in masks/<part>/");
+      return false;
+    }
+    return true;
+  }
+
+  // Frames in parallel: each worker takes the next frame; PNG decoding is
+  // most of the time here.
+  std::atomic<int> next{0}, done{0};
+  std::mutex diag_mutex;
+  std::atomic<bool> failed{false};
+  BackprojectOptions bp;
+  bp.stride = std::max(1, options.stride);
+  auto worker = [&]() {
+    Diagnostics local;
+    for (int f = next++; f < meta.frames && !failed; f = next++) {
+      seq::Image16 depth;
+      if (!sequence.read_depth(f, local, &depth)) {
+        failed = true;
+        break;
+      }
+      for (PartFrames& pf : out->parts) {
+        seq::Image8 mask;
+        if (!sequence.read_mask(pf.mask, f, local, &mask)) {
+          failed = true;
+          break;
+        }
+        int count = 0;
+        for (uint8_t v : mask.pixels) count += v != 0;
+        pf.pixels[f] = count;
+        if (count == 0) continue;
+        // Small moving parts need every pixel they have; the body has plenty.
+        BackprojectOptions part_bp = bp;
+        if (pf.role != "object") part_bp.stride = 1;
+        Cloud c = backproject(depth, meta.depth_scale, meta.intrinsics, &mask, part_bp);
+        thin(&c, pf.role == "object" ? options.max_points_static : options.max_points_moving);
+        transform_cloud(out->camera_to_world[f], &c);
+        pf.clouds[f] = std::move(c);
+      }
+      const int d = ++done;
+      if (progress && (d % 50 == 0 || d == meta.frames))
+        progress("infer: read " + std::to_string(d) + "/" + std::to_string(meta.frames) + " frames");
+    }
+    std::lock_guard<std::mutex> lock(diag_mutex);
+    for (const Diagnostic& d : local.items()) diags.add(d);
+  };
+  const int threads = std::max(1, std::min(options.threads, meta.frames));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return !failed;
+}
+
+}  // namespace efc::pipeline

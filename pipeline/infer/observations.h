@@ -1,0 +1,55 @@
+// efc infer, stage 1: what the recording shows of each part, frame by frame.
+// Each part's mask pixels (sequence masks, or the motion fallback's) are
+// back-projected through the depth and the camera pose given in poses.txt,
+// so every later stage works on 3D points in the (still drifting) world
+// frame. The hand's mask is not a part: its pixels are never points.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "compiler/diagnostics.h"
+#include "pipeline/cloud/cloud.h"
+#include "sequence/sequence.h"
+
+namespace efc::pipeline {
+
+using ProgressFn = std::function<void(const std::string&)>;
+
+struct PartFrames {
+  std::string name, role;       // role from meta.json (receptor, effector, object, ...)
+  std::string mask;             // the mask folder its pixels come from
+  std::vector<Cloud> clouds;    // per frame, world frame of poses.txt; empty when unseen
+  std::vector<int> pixels;      // mask pixels per frame (before the depth test)
+};
+
+struct Observations {
+  std::vector<double> times;                       // per frame (poses.txt)
+  std::vector<Eigen::Isometry3d> camera_to_world;  // per frame, as poses.txt gives them
+  std::vector<seq::HandPoint> hands;               // per frame; empty without hands.txt
+  std::vector<PartFrames> parts;
+  bool motion_masks = false;  // the masks came from the motion fallback
+};
+
+struct ObserveOptions {
+  int stride = 2;                 // back-project every stride-th pixel in x and y
+  int max_points_static = 6000;   // per frame, for parts of role "object"
+  int max_points_moving = 3000;   // per frame, for the others
+  int threads = 2;
+};
+
+// Camera-to-world of a poses.txt line.
+Eigen::Isometry3d pose_to_isometry(const seq::Pose& pose);
+
+// Reads every frame's depth and masks (in parallel) and fills *out. Needs
+// depth and poses (E1050 / E1051 name what is missing and how to supply it);
+// a frame that cannot be read is a located error. False after any error.
+// `masks` names, per part, the mask folder to read ("" = the part's own name);
+// parts without a folder are left out with a warning (E1052).
+bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagnostics& diags,
+             const ProgressFn& progress, Observations* out);
+
+}  // namespace efc::pipeline

@@ -1,0 +1,186 @@
+#include "pipeline/infer/part_tracking.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "pipeline/cloud/fusion.h"
+#include "pipeline/cloud/icp.h"
+#include "pipeline/cloud/kdtree.h"
+
+namespace efc::pipeline {
+
+Cloud part_cloud_in_object(const Observations& obs, int part, int frame,
+                           const std::vector<Eigen::Isometry3d>& to_object) {
+  Cloud c = obs.parts[part].clouds[frame];
+  transform_cloud(to_object[frame], &c);
+  return c;
+}
+
+namespace {
+
+constexpr size_t kMinPoints = 12;
+
+// ICP maps frame points onto the model: the inverse of the part's motion.
+// `seeded`: pass 2. A frame registered in pass 1 starts from its pass-1
+// motion, fine alignment only; the others are tracked as in pass 1.
+void register_frames(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object,
+                     const Cloud& model, bool seeded, PartTrack* out) {
+  const std::vector<bool> seed_ok = out->tracked;
+  std::vector<Eigen::Isometry3d> seed(out->motion.size());
+  for (size_t f = 0; f < seed.size(); ++f) seed[f] = out->motion[f].inverse();
+  const KdTree tree(model.points);
+  const int n = static_cast<int>(obs.times.size());
+  IcpOptions fine;
+  fine.max_correspondence = 0.015;
+  fine.kernel_scale = 0.004;
+  fine.max_iterations = 25;
+  fine.subsample = 600;
+  fine.degenerate_threshold = 0.05;  // noise along a near-symmetry is not motion
+  fine.min_normal_dot = 0.5;         // no flipped matches
+  IcpOptions coarse = fine;
+  coarse.max_correspondence = 0.05;
+  coarse.kernel_scale = 0.015;
+  coarse.max_iterations = 12;
+  // to_model[f]: the ICP result (frame -> model). A frame that fails keeps
+  // its start, but only registered frames seed the next ones (extrapolating
+  // from guesses would run away).
+  std::vector<Eigen::Isometry3d> to_model(n, Eigen::Isometry3d::Identity());
+  int last_good = -1, before_last_good = -1;
+  auto one = [&](int f) {
+    std::vector<Eigen::Isometry3d> starts;
+    const bool from_seed = seeded && seed_ok[f];
+    if (from_seed) {
+      starts.push_back(seed[f]);
+    } else if (last_good >= 0) {
+      starts.push_back(to_model[last_good]);
+      // Constant velocity: the last registered step again, per frame.
+      if (before_last_good >= 0 && std::abs(last_good - before_last_good) == 1)
+        starts.insert(starts.begin(), to_model[last_good] * (to_model[before_last_good].inverse() * to_model[last_good]));
+    }
+    if (!from_seed) starts.push_back(Eigen::Isometry3d::Identity());  // the reference configuration
+    const Cloud c = part_cloud_in_object(obs, part, f, to_object);
+    out->tracked[f] = false;
+    to_model[f] = starts.front();
+    if (c.size() < kMinPoints) return;
+    IcpResult best;
+    bool have = false;
+    for (const Eigen::Isometry3d& start : starts) {
+      IcpResult r;
+      r.transform = start;
+      if (!from_seed) r = icp_point_to_plane(c, model, tree, start, coarse);
+      r = icp_point_to_plane(c, model, tree, r.transform, fine);
+      if (!have || r.inlier_fraction > best.inlier_fraction + 1e-9) best = r, have = true;
+      if (best.inlier_fraction > 0.6) break;  // good enough: skip the other starts
+    }
+    const IcpResult& r = best;
+    const bool good = r.inlier_fraction > 0.5 && r.correspondences >= kMinPoints;
+    out->tracked[f] = good;
+    out->rmse[f] = r.rmse;
+    out->inliers[f] = r.inlier_fraction;
+    out->conditioning[f] = r.normalized_eigenvalues(0);
+    if (good) {
+      to_model[f] = r.transform;
+      before_last_good = last_good;
+      last_good = f;
+    }
+  };
+  const int ref = out->reference_frame;
+  one(ref);
+  const int ref_good = last_good;
+  for (int f = ref + 1; f < n; ++f) one(f);
+  last_good = ref_good, before_last_good = -1;
+  for (int f = ref - 1; f >= 0; --f) one(f);
+  out->frames_tracked = 0;
+  for (int f = 0; f < n; ++f) {
+    out->motion[f] = to_model[f].inverse();
+    out->frames_tracked += out->tracked[f];
+  }
+}
+
+// The frame to model the part on: the one that sees most of it, among the
+// frames where it is where it usually is. Segmenters swap identities now and
+// then, and a frame whose "knob" mask holds the door would make the door the
+// model; its centroid gives it away.
+int reference_frame(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object) {
+  const PartFrames& pf = obs.parts[part];
+  const int n = static_cast<int>(pf.clouds.size());
+  std::vector<Eigen::Vector3d> centre(n, Eigen::Vector3d::Zero());
+  std::vector<double> xs, ys, zs, counts;
+  for (int f = 0; f < n; ++f) {
+    const Cloud& c = pf.clouds[f];
+    if (c.size() < kMinPoints) continue;
+    for (const Eigen::Vector3d& p : c.points) centre[f] += p;
+    centre[f] = to_object[f] * Eigen::Vector3d(centre[f] / static_cast<double>(c.size()));
+    xs.push_back(centre[f].x()), ys.push_back(centre[f].y()), zs.push_back(centre[f].z());
+    counts.push_back(static_cast<double>(c.size()));
+  }
+  if (xs.empty()) return -1;
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  const Eigen::Vector3d typical(median(xs), median(ys), median(zs));
+  std::vector<double> spread;
+  for (int f = 0; f < n; ++f)
+    if (pf.clouds[f].size() >= kMinPoints) spread.push_back((centre[f] - typical).norm());
+  // A part that moves spreads its centroids; twice the median distance
+  // keeps its usual places and drops the strays.
+  const double keep = std::max(0.02, 2.0 * median(spread));
+  const double most = 2.0 * median(counts);
+  int best = -1;
+  size_t best_count = 0;
+  for (int f = 0; f < n; ++f) {
+    const size_t count = pf.clouds[f].size();
+    if (count < kMinPoints || (centre[f] - typical).norm() > keep || count > most) continue;
+    if (count > best_count) best_count = count, best = f;
+  }
+  return best;
+}
+
+}  // namespace
+
+PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object) {
+  const auto start = std::chrono::steady_clock::now();
+  PartTrack out;
+  out.part = part;
+  const int n = static_cast<int>(obs.times.size());
+  out.motion.assign(n, Eigen::Isometry3d::Identity());
+  out.tracked.assign(n, false);
+  out.rmse.assign(n, 0);
+  out.inliers.assign(n, 0);
+  out.conditioning.assign(n, 0);
+  out.reference_frame = reference_frame(obs, part, to_object);
+  if (out.reference_frame < 0) return out;
+
+  // Pass 1: onto the reference frame's own points.
+  Cloud model = part_cloud_in_object(obs, part, out.reference_frame, to_object);
+  register_frames(obs, part, to_object, model, false, &out);
+  // Pass 2: onto every tracked frame fused in the reference configuration.
+  // The model's resolution follows the part's size: 3 mm for a knob, up to
+  // 1 cm for a door (a finer model of a large part only slows ICP).
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : model.points) box.extend(p);
+  FusionOptions fo;
+  fo.voxel = std::clamp(box.diagonal().norm() / 100.0, 0.003, 0.01);
+  fo.min_observations = 2;
+  PartFusion fusion(fo);
+  for (int f = 0; f < n; ++f) {
+    if (!out.tracked[f]) continue;
+    Cloud c = part_cloud_in_object(obs, part, f, to_object);
+    transform_cloud(out.motion[f].inverse(), &c);
+    fusion.add_frame(c);
+  }
+  Cloud fused = fusion.fused();
+  if (fused.size() >= model.size() && fused.has_normals()) {
+    model = std::move(fused);
+    register_frames(obs, part, to_object, model, true, &out);
+  }
+  out.model = std::move(model);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace efc::pipeline

@@ -1,0 +1,43 @@
+// efc infer, stage 3: how each part moves relative to the static object.
+// Every frame's points of the part (object frame, after the ego-motion
+// correction) are registered onto a model of the part by robust
+// point-to-plane ICP: first the frame that sees most of it, then the fusion
+// of every registered frame (a fuller surface, and the hand's occlusion of
+// one frame no longer matters). Frames are visited outward from the
+// reference, each starting from its neighbour's motion extrapolated at
+// constant velocity, so a fast door does not lose the track.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include <vector>
+
+#include "pipeline/infer/observations.h"
+
+namespace efc::pipeline {
+
+struct PartTrack {
+  int part = -1;             // index in Observations::parts
+  int reference_frame = -1;  // the model's configuration is this frame's
+  // Per frame: the rigid motion taking the part from the reference
+  // configuration to this frame's (object frame). Identity where untracked.
+  std::vector<Eigen::Isometry3d> motion;
+  std::vector<bool> tracked;
+  std::vector<double> rmse, inliers;
+  // The ICP system's smallest normalised eigenvalue per frame (about 1 when
+  // every direction is constrained; near 0, a motion the shape cannot show,
+  // such as a plain cylinder turning on its axis).
+  std::vector<double> conditioning;
+  Cloud model;  // reference configuration, object frame
+  int frames_tracked = 0;
+  double seconds = 0;
+};
+
+// to_object[f] maps frame f's points (world of poses.txt) into the object frame.
+PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object);
+
+// The part's points of frame f in the object frame.
+Cloud part_cloud_in_object(const Observations& obs, int part, int frame,
+                           const std::vector<Eigen::Isometry3d>& to_object);
+
+}  // namespace efc::pipeline

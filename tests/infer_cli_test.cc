@@ -1,0 +1,193 @@
+// `efc infer` as a user meets it: a synthetic recording in, a spec out that
+// passes efc check, compiles to every target and plays; the joint it finds
+// against the truth (efc eval); and bad sequences (no depth, no poses, a
+// missing frame, NaN in a pose, a part whose masks are empty, no masks at
+// all) giving located errors or warnings, never a crash and never a partial
+// output.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "sequence/sequence.h"
+#include "tests/efc_cli.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using efc_test::read_file;
+using efc_test::run_efc;
+using json = nlohmann::json;
+namespace seq = efc::seq;
+
+fs::path fresh_dir(const std::string& stem) {
+  fs::path p = fs::temp_directory_path() / ("efc-infer-" + std::to_string(getpid()) + "-" + stem);
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+// A copy of a committed synthetic sequence (tests/data/synth-suite) to break.
+fs::path committed_copy(const fs::path& dir, const std::string& name) {
+  const fs::path src = fs::path(EFC_SOURCE_DIR) / "tests/data/synth-suite/s0000_binary-illumination_revolute/seq";
+  const fs::path dst = dir / name;
+  fs::copy(src, dst, fs::copy_options::recursive);
+  return dst;
+}
+
+TEST(InferCli, SyntheticDrawerToSpecThatCompilesAndPlays) {
+  const fs::path dir = fresh_dir("e2e");
+  const std::string seq = (dir / "seq").string(), out = (dir / "out").string();
+  auto r = run_efc("synth " + std::string(EFC_SOURCE_DIR) + "/examples/kitchen_drawer.json -o " + seq +
+                   " --frames 90 --width 320 --height 240 --noise mild --seed 3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_efc("infer " + seq + " -o " + out + " --report");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("drawer"), std::string::npos) << r.out;  // the --report summary
+  const json spec = json::parse(read_file(dir / "out/spec.json"));
+  ASSERT_TRUE(spec.contains("x-efc-object-to-world"));
+  EXPECT_EQ(spec["x-efc-object-to-world"].size(), 16u);
+  bool drawer = false;
+  for (const json& p : spec["parts"]) {
+    EXPECT_TRUE(fs::exists(dir / "out" / p["geometry"]["mesh"].get<std::string>())) << p;
+    if (p["name"] == "drawer") {
+      drawer = true;
+      EXPECT_EQ(p["joint"]["type"], "prismatic") << p;
+    }
+  }
+  EXPECT_TRUE(drawer);
+  const json report = json::parse(read_file(dir / "out/report.json"));
+  EXPECT_EQ(report["stages"].size(), 6u);
+  for (const json& s : report["stages"]) EXPECT_GE(s["seconds"].get<double>(), 0.0) << s;
+
+  // The spec compiles unchanged to every target and plays.
+  r = run_efc("check " + out + "/spec.json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_efc("compile " + out + "/spec.json --target all -o " + (dir / "compiled").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  for (const char* t : {"mujoco", "urdf", "bullet", "genesis", "isaaclab", "omnigibson"})
+    EXPECT_TRUE(fs::exists(dir / "compiled" / t)) << t;
+  r = run_efc("play " + out + "/spec.json --profile sweep --duration 1 --csv " + (dir / "play.csv").string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "play.csv"));
+
+  // The drawer's axis against the truth, in the world frame.
+  r = run_efc("eval --pred " + out + "/spec.json --gt " + seq + "/truth/spec.json --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json ev = json::parse(r.out);
+  bool scored = false;
+  for (const json& j : ev["joints"]) {
+    if (j["part"] != "drawer") continue;
+    scored = true;
+    EXPECT_TRUE(j["type_correct"].get<bool>()) << j;
+    EXPECT_LT(j["axis_error_rad"].get<double>(), 0.05) << j;
+  }
+  EXPECT_TRUE(scored) << r.out;
+  fs::remove_all(dir);
+}
+
+TEST(InferCli, ParkedPartsAreFixedAndTheSpecChecks) {
+  // The committed kettle: base and jug never move (one is the root, the
+  // other hangs from it by a fixed joint).
+  const fs::path dir = fresh_dir("kettle");
+  const fs::path seq = committed_copy(dir, "seq");
+  auto r = run_efc("infer " + seq.string() + " -o " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const json spec = json::parse(read_file(dir / "out/spec.json"));
+  int roots = 0;
+  for (const json& p : spec["parts"]) {
+    if (!p.contains("joint")) ++roots;
+    else if (p["name"] == "base" || p["name"] == "jug") EXPECT_EQ(p["joint"]["type"], "fixed") << p;
+  }
+  EXPECT_EQ(roots, 1);
+  EXPECT_EQ(run_efc("check " + (dir / "out/spec.json").string()).exit_code, 0);
+  fs::remove_all(dir);
+}
+
+TEST(InferCli, MissingInputsAreNamedAndNothingIsWritten) {
+  const fs::path dir = fresh_dir("missing");
+  {
+    const fs::path seq = committed_copy(dir, "nodepth");
+    fs::remove_all(seq / "depth");
+    auto r = run_efc("infer " + seq.string() + " -o " + (dir / "o1").string());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("error[E1050]"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("depth/"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o1"));
+  }
+  {
+    const fs::path seq = committed_copy(dir, "noposes");
+    fs::remove(seq / "poses.txt");
+    auto r = run_efc("infer " + seq.string() + " -o " + (dir / "o2").string());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("error[E1051]"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o2"));
+  }
+  {
+    const fs::path seq = committed_copy(dir, "noframe");
+    fs::remove(seq / "depth/000017.png");
+    auto r = run_efc("infer " + seq.string() + " -o " + (dir / "o3").string());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("depth/000017.png"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o3"));
+  }
+  {
+    const fs::path seq = committed_copy(dir, "nanpose");
+    std::string poses = read_file(seq / "poses.txt");
+    const size_t line = poses.find('\n', poses.find('\n') + 1);  // after the header and frame 0
+    poses.insert(line + 1, "0.0001 nan 0 0 0 0 0 1\n");
+    std::ofstream(seq / "poses.txt") << poses;
+    auto r = run_efc("infer " + seq.string() + " -o " + (dir / "o4").string());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("poses.txt:3:"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o4"));
+  }
+  {
+    // A folder that is not an earlier infer output is never replaced.
+    const fs::path seq = committed_copy(dir, "ok");
+    fs::create_directories(dir / "mine");
+    std::ofstream(dir / "mine/notes.txt") << "keep me\n";
+    auto r = run_efc("infer " + seq.string() + " -o " + (dir / "mine").string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "mine/notes.txt"));
+  }
+  EXPECT_EQ(run_efc("infer " + (dir / "absent").string() + " -o " + (dir / "o5").string()).exit_code, 1);
+  EXPECT_EQ(run_efc("infer " + (dir / "absent").string() + " -o x --threads 0").exit_code, 2);
+  fs::remove_all(dir);
+}
+
+TEST(InferCli, EmptyMasksAndNoMasksAreWarningsNotCrashes) {
+  const fs::path dir = fresh_dir("masks");
+  {
+    // The LED's masks are all empty: it is left out with a warning.
+    const fs::path seq = committed_copy(dir, "emptyled");
+    seq::Image8 empty;
+    empty.width = 160, empty.height = 120, empty.channels = 1;
+    empty.pixels.assign(160 * 120, 0);
+    std::string error;
+    for (const auto& e : fs::directory_iterator(seq / "masks/led"))
+      ASSERT_TRUE(seq::write_png_gray8(e.path().string(), empty, &error)) << error;
+    auto r = run_efc("infer " + seq.string() + " -o " + (dir / "o1").string());
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning[E1058]"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("'led'"), std::string::npos) << r.err;
+    EXPECT_EQ(run_efc("check " + (dir / "o1/spec.json").string()).exit_code, 0);
+  }
+  {
+    // No masks at all: the motion fallback, with its warning.
+    const fs::path seq = committed_copy(dir, "nomasks");
+    fs::remove_all(seq / "masks");
+    auto r = run_efc("infer " + seq.string() + " -o " + (dir / "o2").string());
+    EXPECT_NE(r.err.find("warning[E1053]"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << r.err;
+    if (r.exit_code == 0) EXPECT_EQ(run_efc("check " + (dir / "o2/spec.json").string()).exit_code, 0);
+    else EXPECT_FALSE(fs::exists(dir / "o2"));
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
