@@ -34,6 +34,7 @@
 #include "compiler/core/load.h"
 #include "pipeline/infer/infer.h"
 #include "synth/synth.h"
+#include "bench/spec_list.h"
 
 namespace fs = std::filesystem;
 
@@ -44,22 +45,6 @@ const char* const kStages[] = {"observations", "ego_motion", "part_motion", "art
 constexpr double kArticulationGoal = 1.0;  // s
 constexpr double kInferGoal = 30.0;        // s, on 2 cores
 
-std::vector<std::string> bench_specs() {
-  const char* env = std::getenv("EFC_BENCH_SPECS");
-  std::string list = env && *env ? env : "stove,microwave,kitchen_drawer";
-  std::vector<std::string> out;
-  std::stringstream ss(list);
-  for (std::string s; std::getline(ss, s, ',');)
-    if (!s.empty() && s != "large_200") out.push_back(s);
-  return out;
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 double cpu_seconds() {
   rusage u{};
@@ -132,7 +117,7 @@ int main(int argc, char** argv) {
   int status = 0;
   double worst_artic = 0, worst_total = 0;
   int measured = 0;
-  for (const std::string& spec : bench_specs()) {
+  for (const std::string& spec : efc_bench::example_stems("stove,microwave,kitchen_drawer")) {
     efc::Diagnostics diags;
     const std::string path = examples + spec + ".json";
     std::optional<efc::Object> obj = efc::load_spec(path, {}, diags);
@@ -147,7 +132,7 @@ int main(int argc, char** argv) {
     opts.width = width;
     opts.height = height;
     opts.seed = seed;
-    opts.spec_json = read_file(path);
+    opts.spec_json = efc_bench::read_text(path);
     std::string error;
     int line = 0;
     bool io = false;

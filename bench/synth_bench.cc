@@ -24,25 +24,10 @@
 #include "backends/common/temp_dir.h"
 #include "compiler/core/load.h"
 #include "synth/synth.h"
+#include "bench/spec_list.h"
 
 namespace {
 
-std::vector<std::string> bench_specs() {
-  const char* env = std::getenv("EFC_BENCH_SPECS");
-  std::string list = env && *env ? env : "kitchen_faucet,stove,desk_fan";
-  std::vector<std::string> out;
-  std::stringstream ss(list);
-  for (std::string s; std::getline(ss, s, ',');)
-    if (!s.empty() && s != "large_200") out.push_back(s);
-  return out;
-}
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 }  // namespace
 
@@ -67,7 +52,7 @@ int main(int argc, char** argv) {
               height, noise.c_str());
   std::printf("%-16s %12s %14s %10s %10s\n", "spec", "render fps", "end-to-end fps", "seconds", "MB");
   int status = 0;
-  for (const std::string& spec : bench_specs()) {
+  for (const std::string& spec : efc_bench::example_stems("kitchen_faucet,stove,desk_fan")) {
     efc::Diagnostics diags;
     const std::string path = examples + spec + ".json";
     std::optional<efc::Object> obj = efc::load_spec(path, {}, diags);
@@ -80,7 +65,7 @@ int main(int argc, char** argv) {
     opts.frames = frames;
     opts.width = width;
     opts.height = height;
-    opts.spec_json = read_file(path);
+    opts.spec_json = efc_bench::read_text(path);
     std::string error;
     int line = 0;
     bool io = false;

@@ -37,19 +37,8 @@ static bool pose_beside(const std::string& spec_path, Diagnostics& diags, WorldF
     return false;
   };
   if (doc.is_discarded() || !doc.is_object() || !doc.contains("object_to_world")) return bad("no \"object_to_world\" in it");
-  const nlohmann::json& v = doc["object_to_world"];
-  if (!v.is_array() || v.size() != 16) return bad("\"object_to_world\" must be an array of 16 numbers");
-  double m[16];
-  for (int i = 0; i < 16; ++i) {
-    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) return bad("element " + std::to_string(i) + " is not a finite number");
-    m[i] = v[i].get<double>();
-  }
-  if (m[12] != 0 || m[13] != 0 || m[14] != 0 || m[15] != 1) return bad("the last row is not 0 0 0 1");
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) out->rotation[r][c] = m[4 * r + c];
-    out->translation[r] = m[4 * r + 3];
-  }
-  return true;
+  std::string problem, suffix;
+  return read_transform(doc["object_to_world"], "\"object_to_world\"", out, &problem, &suffix) || bad(problem);
 }
 
 std::optional<PlacedSpec> load_truth(const std::string& path, bool allow_absolute_paths, Diagnostics& diags,

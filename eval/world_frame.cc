@@ -15,28 +15,26 @@ Vec3 WorldFrame::point(const Vec3& p) const { return geom::add(geom::apply(rotat
 
 Vec3 WorldFrame::direction(const Vec3& d) const { return geom::normalized(geom::apply(rotation, d)); }
 
-bool object_to_world(const Object& obj, Diagnostics& diags, WorldFrame* out) {
+bool read_transform(const nlohmann::json& v, const std::string& subject, WorldFrame* out, std::string* problem,
+                    std::string* pointer_suffix) {
   *out = WorldFrame{};
-  const auto it = obj.extensions.find(kKey);
-  if (it == obj.extensions.end()) return true;
-  const nlohmann::json& v = it->second;
-  const std::string pointer = std::string("/") + kKey;
-  const std::string hint = "write 16 numbers, row-major, last row [0, 0, 0, 1]";
+  pointer_suffix->clear();
   if (!v.is_array() || v.size() != 16) {
-    report(diags, obj, "E1020", pointer, std::string("'") + kKey + "' must be an array of 16 numbers", hint);
+    *problem = subject + " must be an array of 16 numbers";
     return false;
   }
   double m[16];
   for (int i = 0; i < 16; ++i) {
     if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) {
-      report(diags, obj, "E1020", pointer + "/" + std::to_string(i),
-             std::string("'") + kKey + "' element " + std::to_string(i) + " is not a finite number", hint);
+      *problem = subject + " element " + std::to_string(i) + " is not a finite number";
+      *pointer_suffix = "/" + std::to_string(i);
       return false;
     }
     m[i] = v[i].get<double>();
   }
   if (m[12] != 0 || m[13] != 0 || m[14] != 0 || m[15] != 1) {
-    report(diags, obj, "E1020", pointer + "/12", std::string("'") + kKey + "' last row is not 0 0 0 1", hint);
+    *problem = subject + " last row is not 0 0 0 1";
+    *pointer_suffix = "/12";
     return false;
   }
   for (int r = 0; r < 3; ++r) {
@@ -48,12 +46,22 @@ bool object_to_world(const Object& obj, Diagnostics& diags, WorldFrame* out) {
                      a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                      a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
   if (std::fabs(det) < 1e-12) {
-    report(diags, obj, "E1020", pointer, std::string("'") + kKey + "' is singular (its 3x3 part has no inverse)",
-           hint);
+    *problem = subject + " is singular (its 3x3 part has no inverse)";
     *out = WorldFrame{};
     return false;
   }
   return true;
+}
+
+bool object_to_world(const Object& obj, Diagnostics& diags, WorldFrame* out) {
+  *out = WorldFrame{};
+  const auto it = obj.extensions.find(kKey);
+  if (it == obj.extensions.end()) return true;
+  std::string problem, suffix;
+  if (read_transform(it->second, std::string("'") + kKey + "'", out, &problem, &suffix)) return true;
+  report(diags, obj, "E1020", std::string("/") + kKey + suffix, problem,
+         "write 16 numbers, row-major, last row [0, 0, 0, 1]");
+  return false;
 }
 
 }  // namespace efc::eval

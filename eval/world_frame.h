@@ -4,6 +4,10 @@
 // before comparing axes, origins and surfaces.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
+#include <string>
+
 #include "compiler/diagnostics.h"
 #include "compiler/ir.h"
 
@@ -23,5 +27,12 @@ struct WorldFrame {
 // the value is not 16 finite numbers whose last row is 0 0 0 1 and whose
 // linear part is invertible.
 bool object_to_world(const Object& obj, Diagnostics& diags, WorldFrame* out);
+
+// The 16 numbers themselves (the extension's value, or object_pose.json's
+// "object_to_world"): false with *problem, worded after `subject` ("'key'
+// element 3 is not a finite number"), and *pointer_suffix ("/3", "/12" or
+// "") naming the element at fault.
+bool read_transform(const nlohmann::json& value, const std::string& subject, WorldFrame* out,
+                    std::string* problem, std::string* pointer_suffix);
 
 }  // namespace efc::eval
