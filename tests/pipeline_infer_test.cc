@@ -1,6 +1,7 @@
 // The stages of efc infer on made-up inputs with known answers: the
 // visibility of a motion on a surface, the joint chosen from a part's
-// registered poses or from the hand alone, a still part staying fixed, the
+// registered poses (also when some registrations flipped the part) or from
+// the hand alone, a still part staying fixed, which part the hand holds, the
 // mean of rigid transforms and spec names.
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <random>
 
 #include "pipeline/infer/ego_motion.h"
+#include "pipeline/infer/hand_contacts.h"
 #include "pipeline/infer/joint_estimate.h"
 #include "pipeline/infer/spec_assembly.h"
 
@@ -132,6 +134,111 @@ TEST(PipelineInfer, TheHandGivesTheJointTheShapeCannotShow) {
   EXPECT_NEAR(j.range_hi - j.range_lo, 1.5, 0.3);
   // Without the hand, nothing shows the turn: fixed, not a guess.
   EXPECT_EQ(estimate_joint(t, no_hand(frames)).type, "fixed");
+}
+
+// A small lever (6 x 1 x 1 cm) at its hinge end on the origin.
+Cloud lever() {
+  Cloud c;
+  for (int i = 0; i <= 30; ++i)
+    for (int k = 0; k <= 5; ++k) {
+      const double x = 0.06 * i / 30, y = -0.005 + 0.01 * k / 5;
+      c.points.push_back(Vector3d(x, y, 0.01)), c.normals.push_back(Vector3d::UnitZ());
+      c.points.push_back(Vector3d(x, y, 0.0)), c.normals.push_back(-Vector3d::UnitZ());
+      c.points.push_back(Vector3d(x, 0.005, 0.01 * k / 5)), c.normals.push_back(Vector3d::UnitY());
+      c.points.push_back(Vector3d(x, -0.005, 0.01 * k / 5)), c.normals.push_back(-Vector3d::UnitY());
+    }
+  return c;
+}
+
+// Two presses of 0.35 rad about y through the origin, each ramping up over
+// 8 frames, held 6, and back; rest elsewhere.
+double press(int f) {
+  for (int start : {40, 90}) {
+    const int u = f - start;
+    if (u >= 0 && u < 8) return 0.35 * u / 8.0;
+    if (u >= 8 && u < 14) return 0.35;
+    if (u >= 14 && u < 22) return 0.35 * (22 - u) / 8.0;
+  }
+  return 0;
+}
+
+TEST(PipelineInfer, ALeversPressShowsThroughRegistrationNoiseAndFlips) {
+  // Registration of a small part: 2 degrees of rotation noise per frame,
+  // 1 mm of position noise, and one frame in seven flipped end over end (the
+  // lever's mirror image fits its points about as well).
+  const int frames = 140;
+  PartTrack t;
+  t.part = 0;
+  t.reference_frame = 0;
+  t.model = lever();
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g(0, 1);
+  const Vector3d centre(0.03, 0, 0.005);
+  std::vector<bool> flipped(frames, false);
+  for (int f = 0; f < frames; ++f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(press(f), Vector3d::UnitY()).toRotationMatrix() *
+                 Eigen::AngleAxisd(0.035, Vector3d(g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
+    if (f % 7 == 3) {
+      flipped[f] = true;
+      const Eigen::Matrix3d flip = Eigen::AngleAxisd(kPi, Vector3d::UnitZ()).toRotationMatrix();
+      T.linear() = T.linear() * flip;
+      T.translation() = centre - T.linear() * centre;  // end over end about its middle
+    }
+    T.translation() += 0.001 * Vector3d(g(rng), g(rng), g(rng));
+    t.motion.push_back(T);
+    t.tracked.push_back(true);
+    t.rmse.push_back(0.001), t.inliers.push_back(0.8), t.conditioning.push_back(1);
+  }
+  t.frames_tracked = frames;
+  // The flipped frames are dropped; the rest averaged in runs of frames.
+  std::vector<std::vector<int>> frames_of_sample;
+  const Track samples = part_samples(t, centre, 5, &frames_of_sample);
+  ASSERT_EQ(samples.size(), frames_of_sample.size());
+  EXPECT_LT(samples.size(), static_cast<size_t>(frames / 3));
+  int kept = 0;
+  for (const std::vector<int>& fs : frames_of_sample)
+    for (int f : fs) {
+      EXPECT_FALSE(flipped[f]) << "frame " << f;
+      ++kept;
+    }
+  EXPECT_GT(kept, frames * 3 / 4);
+  const JointEstimate j = estimate_joint(t, no_hand(frames));
+  ASSERT_EQ(j.type, "revolute");
+  EXPECT_EQ(j.source, "part");
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(j.axis.dot(Vector3d::UnitY())))), 0.15);
+  EXPECT_NEAR(j.range_hi - j.range_lo, 0.35, 0.1);
+}
+
+TEST(PipelineInfer, AGraspHoldsOnWhileThePartsRegistrationFails) {
+  // A lever at rest in frames 0-19 and 40-59, registered there; lifted by
+  // the hand in frames 20-39, where its registration failed (hidden under
+  // the hand). The hand holds its tip all along, then draws back 10 cm.
+  const int frames = 70;
+  PartTrack t;
+  t.part = 0;
+  t.reference_frame = 0;
+  t.model = lever();
+  for (int f = 0; f < frames; ++f) {
+    t.motion.push_back(Eigen::Isometry3d::Identity());
+    t.tracked.push_back(f < 20 || f >= 40);
+    t.rmse.push_back(0.001), t.inliers.push_back(0.8), t.conditioning.push_back(1);
+  }
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 10; f < 60; ++f) {
+    const double q = f >= 20 && f < 40 ? 1.0 * std::sin(kPi * (f - 20) / 20.0) : 0.0;
+    hand[f] = Eigen::AngleAxisd(-q, Vector3d::UnitY()) * Vector3d(0.055, 0, 0.015);
+  }
+  for (int f = 60; f < frames; ++f) hand[f] = Vector3d(0.055, 0, 0.015 + 0.01 * (f - 59));
+  // A second part far away never gets the hand; a static part has no track.
+  PartTrack far = t;
+  for (Vector3d& p : far.model.points) p += Vector3d(1, 0, 0);
+  const std::vector<std::vector<Vector3d>> held = assign_hand_contacts(hand, {&t, nullptr, &far});
+  ASSERT_EQ(held.size(), 3u);
+  for (int f = 10; f < 60; ++f) EXPECT_TRUE(held[0][f].allFinite()) << "frame " << f;
+  // The retreat starts at rest (registered): beyond 3 cm it is not a contact.
+  for (int f = 63; f < frames; ++f) EXPECT_FALSE(held[0][f].allFinite()) << "frame " << f;
+  for (int f = 0; f < frames; ++f) EXPECT_FALSE(held[1][f].allFinite() || held[2][f].allFinite());
 }
 
 TEST(PipelineInfer, JointMotionTurnsAboutTheAxisLine) {

@@ -8,8 +8,8 @@
 #include <memory>
 #include <thread>
 
-#include "pipeline/cloud/kdtree.h"
 #include "pipeline/infer/ego_motion.h"
+#include "pipeline/infer/hand_contacts.h"
 #include "pipeline/infer/joint_estimate.h"
 #include "pipeline/infer/part_tracking.h"
 #include "pipeline/infer/reconstruction.h"
@@ -22,10 +22,6 @@ namespace {
 using ojson = nlohmann::ordered_json;
 using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// The hand holds a part when its contact point lies this close to the
-// part's surface: the hand detector's error (~1 cm per axis) and the grasp
-// point sitting on the part.
-constexpr double kContactDistance = 0.03;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -53,21 +49,6 @@ Eigen::Isometry3d object_frame(const Cloud& static_model, const std::array<doubl
   T.linear() = R;
   T.translation() = R * origin_local;
   return T;
-}
-
-// Untracked frames take the nearest tracked frame's motion (the part holds
-// still while it is out of sight, as far as we can tell).
-std::vector<Eigen::Isometry3d> filled_motion(const PartTrack& t) {
-  const int n = static_cast<int>(t.motion.size());
-  std::vector<Eigen::Isometry3d> out = t.motion;
-  for (int f = 0; f < n; ++f) {
-    if (t.tracked[f]) continue;
-    for (int d = 1; d < n; ++d) {
-      if (f - d >= 0 && t.tracked[f - d]) { out[f] = t.motion[f - d]; break; }
-      if (f + d < n && t.tracked[f + d]) { out[f] = t.motion[f + d]; break; }
-    }
-  }
-  return out;
 }
 
 ojson stage(const std::string& name, double seconds) {
@@ -200,29 +181,15 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
 
   // 4. Joints: the hand's contact points go to the part they touch.
   t0 = Clock::now();
-  const Eigen::Vector3d none = Eigen::Vector3d::Constant(kNaN);
-  std::vector<std::vector<Eigen::Vector3d>> hand_points(obs.parts.size(), std::vector<Eigen::Vector3d>(n, none));
+  std::vector<std::vector<Eigen::Vector3d>> hand_points(obs.parts.size(), std::vector<Eigen::Vector3d>(n, Eigen::Vector3d::Constant(kNaN)));
   if (!obs.hands.empty()) {
-    std::vector<std::unique_ptr<KdTree>> trees(obs.parts.size());
-    std::vector<std::vector<Eigen::Isometry3d>> motion(obs.parts.size());
-    for (int p : moving_parts)
-      if (tracks[p] && tracks[p]->model.size() > 0) {
-        trees[p] = std::make_unique<KdTree>(tracks[p]->model.points);
-        motion[p] = filled_motion(*tracks[p]);
-      }
-    for (int f = 0; f < n && f < static_cast<int>(obs.hands.size()); ++f) {
-      if (!obs.hands[f].seen) continue;
-      const Eigen::Vector3d h = world_to_object * Eigen::Vector3d(obs.hands[f].p[0], obs.hands[f].p[1], obs.hands[f].p[2]);
-      int owner = -1;
-      double best = kContactDistance * kContactDistance;
-      for (int p : moving_parts) {
-        if (!trees[p]) continue;
-        size_t idx;
-        double d2;
-        if (trees[p]->nearest(motion[p][f].inverse() * h, &idx, &d2) && d2 < best) best = d2, owner = p;
-      }
-      if (owner >= 0) hand_points[owner][f] = h;
-    }
+    std::vector<Eigen::Vector3d> hand(n, Eigen::Vector3d::Constant(kNaN));
+    for (int f = 0; f < n && f < static_cast<int>(obs.hands.size()); ++f)
+      if (obs.hands[f].seen)
+        hand[f] = world_to_object * Eigen::Vector3d(obs.hands[f].p[0], obs.hands[f].p[1], obs.hands[f].p[2]);
+    std::vector<const PartTrack*> tracked(obs.parts.size(), nullptr);
+    for (int p : moving_parts) tracked[p] = tracks[p].get();
+    hand_points = assign_hand_contacts(hand, tracked);
   }
   std::vector<JointEstimate> joints(obs.parts.size());
   for (int p : moving_parts)

@@ -105,7 +105,97 @@ std::vector<double> smoothed(const std::vector<double>& q, int half) {
   return out;
 }
 
+
+// A joint moves smoothly, so a frame whose pose jumps away from both of its
+// neighbourhoods is an ICP failure (a small part flipped onto its mirror
+// image, or slid along a symmetry), not a motion: one such frame in ten
+// swamps a Gaussian likelihood and hides the real motion. A frame is
+// dropped when its pose is further from the median pose of the frames
+// around it than kSpikeMads robust deviations (the MAD over the whole track).
+constexpr int kSpikeHalfWindow = 4;
+constexpr double kSpikeMads = 5.0;
+constexpr int kPartBin = 5;
+
+Eigen::Vector3d rotation_vector(const Eigen::Quaterniond& q) {
+  const Eigen::AngleAxisd aa(q.normalized());
+  return aa.angle() * aa.axis();
+}
+
+double median_of(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+std::vector<bool> pose_spikes(const std::vector<Eigen::Vector3d>& rot, const std::vector<Eigen::Vector3d>& pos) {
+  const int m = static_cast<int>(rot.size());
+  std::vector<double> d_rot(m), d_pos(m);
+  for (int i = 0; i < m; ++i) {
+    Eigen::Vector3d med_r, med_p;
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> wr, wp;
+      for (int k = std::max(0, i - kSpikeHalfWindow); k <= std::min(m - 1, i + kSpikeHalfWindow); ++k)
+        if (k != i) wr.push_back(rot[k][c]), wp.push_back(pos[k][c]);
+      med_r[c] = median_of(wr), med_p[c] = median_of(wp);
+    }
+    d_rot[i] = (rot[i] - med_r).norm();
+    d_pos[i] = (pos[i] - med_p).norm();
+  }
+  // 1.4826 MAD: a standard deviation for Gaussian noise; floors at the
+  // tracker's precision keep a noise-free track from flagging everything.
+  const double s_rot = std::max(1.4826 * median_of(d_rot), kRotationFloor);
+  const double s_pos = std::max(1.4826 * median_of(d_pos), kPositionFloor);
+  std::vector<bool> spike(m, false);
+  for (int i = 0; i < m; ++i) spike[i] = d_rot[i] > kSpikeMads * s_rot || d_pos[i] > kSpikeMads * s_pos;
+  return spike;
+}
+
 }  // namespace
+
+Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int bin_frames,
+                   std::vector<std::vector<int>>* frames_of_sample) {
+  const int n = static_cast<int>(track.motion.size());
+  std::vector<int> frames;
+  std::vector<Eigen::Vector3d> rot, pos;
+  std::vector<Eigen::Quaterniond> quat;
+  for (int f = 0; f < n; ++f) {
+    if (!track.tracked[f]) continue;
+    frames.push_back(f);
+    quat.emplace_back(track.motion[f].linear());
+    rot.push_back(rotation_vector(quat.back()));
+    pos.push_back(track.motion[f] * centroid);
+  }
+  const std::vector<bool> spike = pose_spikes(rot, pos);
+  Track out;
+  frames_of_sample->clear();
+  std::vector<int> bin;
+  Eigen::Vector3d sum_p = Eigen::Vector3d::Zero();
+  Eigen::Vector4d sum_q = Eigen::Vector4d::Zero();
+  auto flush = [&]() {
+    if (bin.empty()) return;
+    out.positions.push_back(sum_p / static_cast<double>(bin.size()));
+    out.rotations.emplace_back(Eigen::Quaterniond(sum_q.normalized()));
+    frames_of_sample->push_back(bin);
+    bin.clear();
+    sum_p.setZero();
+    sum_q.setZero();
+  };
+  int last = -10;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    if (spike[i]) continue;
+    const int f = frames[i];
+    if (f - last > 2 || static_cast<int>(bin.size()) >= bin_frames) flush();
+    // Quaternions q and -q are one rotation: align each with the bin's first.
+    Eigen::Vector4d c = quat[i].coeffs();
+    if (!bin.empty() && c.dot(sum_q) < 0) c = -c;
+    sum_q += c;
+    sum_p += pos[i];
+    bin.push_back(f);
+    last = f;
+  }
+  flush();
+  return out;
+}
 
 double visibility(const Cloud& surface, const std::string& type, const Eigen::Vector3d& axis,
                   const Eigen::Vector3d& origin) {
@@ -147,18 +237,19 @@ Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points) {
   JointEstimate j;
   const int n = static_cast<int>(track.motion.size());
-  // The part's own track: the pose of its model's centroid per tracked frame.
-  Track part;
-  std::vector<int> part_frames;
+  // The part's own track: the pose of its model's centroid per tracked
+  // frame, its ICP failures dropped (part_samples()). The type is chosen on
+  // runs of kPartBin frames averaged, the same smoothness prior as the
+  // hand's: one latent joint position per sixth of a second rather than per
+  // frame, each sample's noise sqrt(kPartBin) times smaller, so a few degrees
+  // of a small lever's press outweigh the registration noise. The geometry
+  // and the per-frame positions then come from the frames one by one (an
+  // average blurs where a motion starts and where it peaks).
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : track.model.points) centroid += p;
   if (!track.model.points.empty()) centroid /= static_cast<double>(track.model.points.size());
-  for (int f = 0; f < n; ++f) {
-    if (!track.tracked[f]) continue;
-    part.positions.push_back(track.motion[f] * centroid);
-    part.rotations.push_back(Eigen::Quaterniond(track.motion[f].linear()));
-    part_frames.push_back(f);
-  }
+  std::vector<std::vector<int>> part_frames;
+  const Track part = part_samples(track, centroid, kPartBin, &part_frames);
   // The hand's track, averaged over runs of up to kHandBin consecutive
   // contact frames: a hand detector's error (~1 cm) is far larger than a
   // knob's or a lever's motion in one frame, while a joint barely moves in a
@@ -229,12 +320,15 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // from the hand.
   std::vector<double> q(n, kNaN);
   if (part_decides) {
-    const Articulation& a = j.from_part;
+    std::vector<std::vector<int>> frames_one_by_one;
+    const Articulation a = estimate_articulation_as(part_samples(track, centroid, 1, &frames_one_by_one), type);
+    part_frames = std::move(frames_one_by_one);
     j.source = "part";
     j.type = type;
     j.axis = a.axis;
     j.origin = a.origin;
-    for (size_t k = 0; k < part_frames.size() && k < a.q.size(); ++k) q[part_frames[k]] = a.q[k];
+    for (size_t k = 0; k < part_frames.size() && k < a.q.size(); ++k)
+      for (int f : part_frames[k]) q[f] = a.q[k];
   } else {
     const Articulation& a = j.from_hand;
     j.source = "hand";

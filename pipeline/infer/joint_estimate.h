@@ -53,6 +53,14 @@ constexpr double kMinVisibility = 0.1;
 // The joint's rigid motion at position q (object frame).
 Eigen::Isometry3d joint_motion(const JointEstimate& joint, double q);
 
+// The part track as the articulation estimator sees it: the pose of
+// `centroid` (a point of the model) in each tracked frame, frames whose pose
+// jumps away from their neighbours' dropped as ICP failures, then averaged
+// over runs of up to `bin_frames` consecutive frames (1: none).
+// frames_of_sample[k] lists the frames averaged into sample k.
+Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int bin_frames,
+                   std::vector<std::vector<int>>* frames_of_sample);
+
 // hand_points[f]: the hand's contact point in the object frame in the frames
 // it holds this part (NaN elsewhere).
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points);
