@@ -46,6 +46,9 @@ int run_cli(int argc, char** argv) {
 
   CommonOptions common;
   std::string format = "text";
+  // efc batch ... -- COMMAND: what follows `--` is the jobs' command, not CLI11's to parse.
+  BatchArgs batch;
+  argc = split_batch_command(argc, argv, &batch);
 
   std::vector<std::string> specs;
   bool dump_ir = false;
@@ -170,7 +173,7 @@ int run_cli(int argc, char** argv) {
       "eval", "the EgoFun3D paper's metrics: a predicted spec against the true one, or over a list of pairs");
   evalc->add_option("--pred", evals.pred, "predicted spec (missing or broken: scored as a failure)");
   evalc->add_option("--gt", evals.gt, "true spec");
-  evalc->add_option("--list", evals.list, "file of pairs: PRED GT [PRED_MASKS GT_SEQ] per line");
+  evalc->add_option("--list", evals.list, "file of pairs: PRED GT [PRED_MASKS GT_SEQ] per line, or an efc batch's DIR/results.jsonl");
   evalc->add_option("--pred-masks", evals.pred_masks, "folder with masks/<part>/NNNNNN.png predicted");
   evalc->add_option("--gt-seq", evals.gt_seq, "true sequence (its masks/)");
   evalc->add_flag("--json", evals.json, "print one JSON object instead of tables");
@@ -184,6 +187,9 @@ int run_cli(int argc, char** argv) {
   egofun3dc->add_option("DATASET", ego_dataset, "the dataset folder (holds dataset_metadata.json)")->required();
   egofun3dc->add_option("-o,--output", ego_output, "folder to write one sequence per video into")->required();
   add_common(egofun3dc, &common, &format);
+
+  CLI::App* batchc = add_batch_command(&app, &batch);
+  add_common(batchc, &common, &format);
 
   std::string code;
   bool list = false;
@@ -227,6 +233,7 @@ int run_cli(int argc, char** argv) {
   }
   if (*inferc) return cmd_infer(report, infer);
   if (*suitec) return cmd_synth_suite(report, suite);
+  if (*batchc) return cmd_batch(report, batch);
   return kExitUsage;
 }
 

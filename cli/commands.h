@@ -12,6 +12,10 @@
 #include "runtime/efc_profile.h"
 #include "synth/synth.h"
 
+namespace CLI {
+class App;
+}
+
 namespace efc {
 
 int run_cli(int argc, char** argv);
@@ -80,6 +84,24 @@ int check_synth_options(Report& report, const SynthArgs& args);
 synth::SynthOptions synth_options(Report& report, const SynthArgs& args);
 
 int cmd_articulate(Report& report, const std::string& track, const std::string& format);
+
+// efc batch (cli/batch.cc, over batch/): MANIFEST -o DIR [-j N] [--shard I/N]
+// -- COMMAND..., --slurm [--submit] to write (and submit) an array job, or
+// --merge DIR.
+struct BatchArgs {
+  std::string manifest, output, shard, merge, slurm_script;
+  std::vector<std::string> command;  // what follows `--`
+  bool command_given = false;
+  int jobs = 0;  // -j; 0: the CPUs available
+  bool retry_failed = false, slurm = false, submit = false;
+  int tasks = 0, parallel = 0, cpus_per_task = 1;
+  std::string mem, time, partition, job_name = "efc-batch";
+};
+// Takes `-- COMMAND...` off the end of `efc batch ...` (the jobs' command is
+// not batch's to parse); the argc left for CLI11.
+int split_batch_command(int argc, char** argv, BatchArgs* args);
+CLI::App* add_batch_command(CLI::App* app, BatchArgs* args);
+int cmd_batch(Report& report, const BatchArgs& args);
 
 // efc import-egofun3d (cli/import_egofun3d.cc): execs efc-import-egofun3d,
 // built next to efc, with `args` (everything after the subcommand's name).

@@ -1,11 +1,13 @@
 // efc eval: the EgoFun3D paper's metrics (eval/README.md) for one predicted
 // spec against the true one (--pred P --gt G), or aggregated over the pairs of
-// a list file (--list PAIRS). Tables or one JSON object on stdout; every
-// problem on stderr. A missing or broken prediction is scored, not an error.
+// a list file (--list PAIRS, or an efc batch's results.jsonl). Tables or one
+// JSON object on stdout; every problem on stderr. A missing or broken
+// prediction is scored, not an error.
 #include <filesystem>
 #include <iostream>
 
 #include "cli/commands.h"
+#include "eval/batch_results.h"
 #include "eval/eval_report.h"
 #include "eval/pair_list.h"
 #include "eval/paper_metrics.h"
@@ -26,8 +28,9 @@ std::optional<eval::PairResult> evaluate_one(Report& report, const eval::PairEnt
     *rc = io_error ? kExitUsage : kExitBadInput;
     return std::nullopt;
   }
-  std::string why;
-  const std::optional<eval::PlacedSpec> pred = eval::load_prediction(pair.pred, allow_abs, &why);
+  std::string why = pair.failure;
+  const std::optional<eval::PlacedSpec> pred =
+      pair.failure.empty() ? eval::load_prediction(pair.pred, allow_abs, &why) : std::nullopt;
   if (!pred) report.note(where + "failed prediction, scored as such: " + why);
   eval::PairResult result = eval::evaluate_pair(*gt, pred ? &*pred : nullptr, eval::EvalOptions{});
   if (!pred) result.prediction_problem = why;
@@ -78,7 +81,11 @@ int eval_single(Report& report, const EvalArgs& args) {
 int eval_list(Report& report, const EvalArgs& args) {
   std::vector<eval::PairEntry> pairs;
   bool io_error = false;
-  const bool read = eval::read_pair_list(args.list, report.diags(), &pairs, &io_error);
+  // An efc batch's results (DIR or DIR/results.jsonl), or a PAIRS file.
+  std::string list = args.list;
+  const bool read = eval::is_batch_results(args.list)
+                        ? eval::read_batch_results(args.list, report.diags(), &pairs, &io_error, &list)
+                        : eval::read_pair_list(args.list, report.diags(), &pairs, &io_error);
   report.flush();
   if (!read) return io_error ? kExitUsage : kExitBadInput;
   int worst = kExitOk;
@@ -86,7 +93,7 @@ int eval_list(Report& report, const EvalArgs& args) {
   for (const eval::PairEntry& pair : pairs) {
     int rc = kExitOk;
     std::optional<eval::PairResult> r =
-        evaluate_one(report, pair, args.list + ":" + std::to_string(pair.line) + ": ", &rc);
+        evaluate_one(report, pair, list + ":" + std::to_string(pair.line) + ": ", &rc);
     if (r)
       results.push_back(std::move(*r));
     else

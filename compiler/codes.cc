@@ -7,6 +7,7 @@
 //   E03xx  functions: references, the function graph, mappings, effects
 //   E09xx  backends and output
 //   E10xx  sequence folders (shared/spec/sequence.md)
+//   E11xx  efc batch: manifests, job results, shards, Slurm
 //   Wxxxx  warnings, numbered like the errors of the same area
 #include <algorithm>
 #include <cctype>
@@ -606,6 +607,92 @@ const std::vector<CodeInfo>& all_codes() {
        "that the efc program itself does not load FFmpeg and HDF5. It was not built\n"
        "(FFmpeg or HDF5 missing at configure time, or only the efc target was built).\n"
        "Fix: scripts/setup, then cmake --build build --target efc-import-egofun3d."},
+      // ---------------------------------------------------------------- E11xx
+      {"E1100", "bad line in an efc batch manifest",
+       "Each line of the manifest is one job: PATH [ARG...], words separated by blanks.\n"
+       "'...' quotes literally, \"...\" quotes with \\\" and \\\\ escapes, a backslash outside\n"
+       "quotes escapes the next character, '#' starts a comment. A quote must be closed\n"
+       "on its line. For commands that write a folder (compile, synth, infer, ...) a line\n"
+       "may not give -o/--output: efc batch gives every job its own DIR/jobs/<id>/.\n"
+       "  lamp.json --target \"all        <- the quote is not closed\n"
+       "Nothing runs until every line is right.\n"
+       "Fix: correct the line the error points at."},
+      {"E1101", "cannot read the manifest",
+       "efc batch could not open the manifest (it does not exist, is a folder, or is\n"
+       "not readable). The command exits with code 2.\n"
+       "Fix: check the path."},
+      {"E1102", "the manifest holds no jobs",
+       "Every line of the manifest is blank or a comment.\n"
+       "Fix: write one spec or sequence path per line."},
+      {"E1103", "no command, or one efc batch cannot run",
+       "The jobs' command follows '--': efc batch MANIFEST -o DIR -- compile --target all.\n"
+       "It must start with an efc command (not batch itself), and a command that\n"
+       "writes a folder may not be given -o: batch sets each job's output folder.\n"
+       "Fix: write '--' and the command after the batch's own options."},
+      {"E1104", "bad shard",
+       "--shard I/N takes the jobs I, I+N, I+2N, ... of the manifest; I and N are whole\n"
+       "numbers with 0 <= I < N. Without --shard, SLURM_ARRAY_TASK_ID (minus\n"
+       "SLURM_ARRAY_TASK_MIN) and SLURM_ARRAY_TASK_COUNT are used when both are set.\n"
+       "  --shard 4/4      <- I runs from 0 to 3\n"
+       "Fix: give a shard in range, or unset the Slurm variables."},
+      {"E1105", "cannot write the batch folder",
+       "efc batch could not create DIR, a job's folder, a record or a results file\n"
+       "(permissions, a full disk), or could not start a job. Results already\n"
+       "recorded are kept; the command exits with code 2.\n"
+       "Fix: check the folder's permissions and free space, then run the same command again."},
+      {"E1106", "the folder is not this batch's",
+       "-o DIR must be a new or empty folder, or one that efc batch wrote for the same\n"
+       "command (DIR/batch.json says which): a batch never writes into a folder of\n"
+       "other files, and one folder holds the results of one command.\n"
+       "Fix: choose another -o folder (or remove the old batch)."},
+      {"E1110", "a job of the batch failed",
+       "The job on this manifest line exited with a non-zero code (or was killed by a\n"
+       "signal); the message shows its first error, DIR/logs/<id>.stderr all of it, and\n"
+       "DIR/results.jsonl its record. The other jobs ran regardless; efc batch exits 1.\n"
+       "Fix: correct the job's input; then efc batch ... --retry-failed runs the failed\n"
+       "jobs again (and only them)."},
+      {"E1111", "the batch was interrupted",
+       "efc batch got SIGINT, SIGTERM or SIGHUP (Ctrl-C, kill, a Slurm time limit or\n"
+       "pre-emption), passed it on to the running jobs and stopped. Jobs that had ended\n"
+       "keep their results; the interrupted ones have none. The command exits with 2.\n"
+       "Fix: run the same command again: it skips every job that has a result."},
+      {"E1112", "a shard's results are missing",
+       "efc batch --merge DIR needs DIR/results-I-of-N.jsonl for every I from 0 to N-1;\n"
+       "one is not there (its array task did not run, failed to start, or was killed\n"
+       "before it began). Nothing is merged: a missing shard is not guessed.\n"
+       "Fix: run that shard again (the error shows the command), then merge again."},
+      {"E1113", "a job has no result in its shard",
+       "The shard's results file holds no record of this job (the task ran out of time,\n"
+       "or was killed, before the job ended; or the manifest changed after the run).\n"
+       "Nothing is merged.\n"
+       "Fix: run the job's shard again: it skips the jobs that have results."},
+      {"E1114", "shard results do not fit together",
+       "The results files in DIR are of different shard counts N (an old split was left\n"
+       "behind), or a line of one is not a complete job record.\n"
+       "Fix: remove the old split's results-I-of-N.jsonl files, or run the broken shard\n"
+       "again (its results are rebuilt from DIR/records/)."},
+      {"E1115", "not a batch folder",
+       "efc batch --merge DIR needs the folder the shards wrote into, with its\n"
+       "batch.json (the list of jobs, written by --slurm and by every shard).\n"
+       "Fix: give the -o folder of the batch."},
+      {"E1116", "the Slurm job could not be submitted",
+       "efc batch --slurm --submit runs sbatch --parsable on the script it wrote; sbatch\n"
+       "is not installed or not in PATH, or it refused the job (its message follows).\n"
+       "The script is kept (DIR/batch.sbatch).\n"
+       "Fix: submit it yourself (sbatch DIR/batch.sbatch), or correct what sbatch said."},
+      {"E1117", "a value cannot go into the Slurm script",
+       "sbatch reads #SBATCH lines itself, not through a shell, and expands '%' in file\n"
+       "names, so the values it reads there (the batch folder, for the log files;\n"
+       "--mem, --time, --partition, --job-name) may hold only letters, digits, blanks\n"
+       "and _ . / + , : = @ ~ -. Everything else in the script is quoted for the shell.\n"
+       "Fix: choose a batch folder (or a value) without other characters."},
+      {"E1118", "bad record in a batch results file",
+       "efc eval --list DIR/results.jsonl reads the records efc batch wrote: one JSON\n"
+       "object a line with job, path, exit_code and output. For an infer batch over\n"
+       "sequences, each job's truth is PATH/truth/spec.json and its prediction\n"
+       "DIR/OUTPUT/spec.json; a failed job is scored as a failed prediction. This line is\n"
+       "not a record, or its sequence has no truth/spec.json.\n"
+       "Fix: merge again (efc batch --merge DIR), or evaluate only sequences with truth."},
       // ---------------------------------------------------------------- warnings
       {"W0103", "mesh is not closed",
        "The mesh has holes or edges not shared by exactly two triangles, so its\n"

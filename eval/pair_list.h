@@ -16,6 +16,9 @@ struct PairEntry {
   std::string pred, gt;
   std::string pred_masks, gt_seq;  // both or neither
   int line = 0;
+  // Set when the prediction is known to have failed (an efc batch job that
+  // exited non-zero): scored as a failure, with this as the reason.
+  std::string failure;
 };
 
 // False after any problem: the file cannot be read (E1022, *io_error set),
