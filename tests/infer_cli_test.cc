@@ -87,6 +87,21 @@ TEST(InferCli, SyntheticDrawerToSpecThatCompilesAndPlays) {
     EXPECT_LT(j["axis_error_rad"].get<double>(), 0.05) << j;
   }
   EXPECT_TRUE(scored) << r.out;
+
+  // A part no function names ('object') may move all the same: the drawer,
+  // relabelled so and its functions taken away, is still prismatic.
+  json meta = json::parse(read_file(dir / "seq/meta.json"));
+  ASSERT_TRUE(meta["parts"].contains("drawer"));
+  meta["parts"]["drawer"] = "object";
+  meta.erase("functions");
+  std::ofstream(dir / "seq/meta.json") << meta.dump(2);
+  r = run_efc("infer " + seq + " -o " + (dir / "out-object").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  bool moved = false;
+  const json relabelled = json::parse(read_file(dir / "out-object/spec.json"));
+  for (const json& p : relabelled["parts"])
+    if (p["name"] == "drawer") moved = p.contains("joint") && p["joint"]["type"] == "prismatic";
+  EXPECT_TRUE(moved) << read_file(dir / "out-object/spec.json");
   fs::remove_all(dir);
 }
 

@@ -378,6 +378,23 @@ bool have_vlm() {
 
 }  // namespace
 
+TEST(TemplatesFit, TwoFunctionsOnOnePartSetDifferentEffects) {
+  // Two functions acting on the same effector may not both set one of its
+  // effects (efc check, E0307): the second takes its best other effect.
+  efc::test::TruthInput t;
+  std::string why;
+  ASSERT_TRUE(efc::test::load_truth_input(kCumulativeGeometry, &t, &why)) << why;
+  ASSERT_EQ(t.input.functions.size(), 1u);
+  efc::seq::FunctionRef twin = t.input.functions[0];
+  twin.name = "twin";
+  t.input.functions.push_back(twin);
+  efc::Diagnostics diags;
+  const auto got = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[0].effect["type"], "geometry");  // the ram's joint answers for the first
+  EXPECT_NE(got[1].effect["type"], got[0].effect["type"]);
+}
+
 TEST(TemplatesVlm, ParsesRepliesAndRejectsGarbage) {
   using efc::pipeline::parse_vlm_reply;
   auto wrap = [](const std::string& content) {

@@ -162,7 +162,24 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   }
   if (progress) progress("infer: camera registered on " + std::to_string(static_parts.size()) + " static part(s)");
 
-  // 3. Part motion, two parts at a time.
+  // 3. Part motion, two parts at a time: every part but the body (the
+  // best-seen static part). The other 'object' parts were assumed still for
+  // the camera's registration, which the body dominates, but an object may
+  // carry parts no function drives that move all the same (a lamp's head
+  // sagging on its hinge, a lid pushed aside): their joints are estimated
+  // like any other, and one that never moves comes out fixed.
+  int body = -1;
+  {
+    size_t most = 0;
+    for (int p : static_parts) {
+      size_t s = 0;
+      for (const Cloud& c : obs.parts[p].clouds) s += c.size();
+      if (body < 0 || s > most) most = s, body = p;
+    }
+  }
+  for (int p : static_parts)
+    if (p != body) moving_parts.push_back(p);
+  std::sort(moving_parts.begin(), moving_parts.end());
   t0 = Clock::now();
   std::vector<std::unique_ptr<PartTrack>> tracks(obs.parts.size());
   {
@@ -215,10 +232,12 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   if (progress) progress("infer: parts reconstructed");
 
   // The parts that made it: a mesh is needed for the spec.
-  int root = -1;
-  size_t root_points = 0;
-  for (int p : static_parts)
-    if (recon[p].ok && recon[p].fused.size() > root_points) root_points = recon[p].fused.size(), root = p;
+  int root = recon[body].ok ? body : -1;
+  if (root < 0) {  // the body could not be reconstructed: the best static part that could
+    size_t root_points = 0;
+    for (int p : static_parts)
+      if (recon[p].ok && recon[p].fused.size() > root_points) root_points = recon[p].fused.size(), root = p;
+  }
   if (root < 0) {
     diags.error("E1057", sequence.dir(), 0, 0, "", "no static part could be reconstructed: there is no body to build on");
     return 1;

@@ -115,6 +115,7 @@ std::vector<double> smoothed(const std::vector<double>& q, int half) {
 constexpr int kSpikeHalfWindow = 4;
 constexpr double kSpikeMads = 5.0;
 constexpr int kPartBin = 5;
+constexpr size_t kMinModelPoints = 100;
 
 Eigen::Vector3d rotation_vector(const Eigen::Quaterniond& q) {
   const Eigen::AngleAxisd aa(q.normalized());
@@ -298,7 +299,11 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   j.bic_revolute = sum(&Articulation::revolute);
   if (j.has_part_track && j.from_part.type != "fixed")
     j.part_visibility = visibility(track.model, j.from_part.type, j.from_part.axis, j.from_part.origin);
-  const bool part_visible = j.has_part_track && (j.from_part.type == "fixed" || j.part_visibility >= kMinVisibility);
+  // A model of a few dozen points slides about on anything: its
+  // registration cannot tell a motion.
+  const bool part_reliable = track.model.size() >= kMinModelPoints;
+  const bool part_visible = j.has_part_track && part_reliable &&
+                            (j.from_part.type == "fixed" || j.part_visibility >= kMinVisibility);
   const bool part_decides = part_visible && j.from_part.type != "fixed";
   const bool hand_decides = !part_decides && j.has_hand_track && j.from_hand.type != "fixed";
   std::string type = "fixed";

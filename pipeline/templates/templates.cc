@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <set>
 #include <limits>
 
 #include "pipeline/templates/frame_signals.h"
@@ -133,6 +135,10 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     diags.warning("E1064", seq_file, 0, 0, "", "the vision-language adapter is unavailable: " + vlm_why,
                   "install libcurl (libcurl4) or leave the endpoint unset");
 
+  // The effects each effector is already given: two functions may not set
+  // the same effect of one part (efc check, E0307), so a later function on
+  // that part takes its best effect among the others.
+  std::map<std::string, std::set<int>> effects_taken;
   for (size_t fi = 0; fi < input.functions.size(); ++fi) {
     const auto tf = std::chrono::steady_clock::now();
     const seq::FunctionRef& F = input.functions[fi];
@@ -242,10 +248,6 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
       std::fill(effect_post.begin(), effect_post.end(), 0.05);
       effect_post[2] = 0.8;
       if (!(eff && movable(*eff))) effect_post[0] = 0;
-      diags.warning("E1062", seq_file, 0, 0, where,
-                    "function '" + F.name + "': no signal at the effector '" + F.effector +
-                        "' follows the receptor; the effect is a guess (temperature)",
-                    "a longer recording, or the effector kept in view, shows the effect");
     }
 
     // ---- the optional second opinion
@@ -274,11 +276,27 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
       }
     }
 
+    std::set<int>& taken = effects_taken[F.effector];
+    if (taken.size() < effect_post.size())
+      for (int k : taken) effect_post[k] = 0;
     double total = 0;
     for (double p : effect_post) total += p;
-    if (total <= 0) effect_post.assign(5, 0.2), total = 1;
+    if (total <= 0) {
+      effect_post.assign(5, 0.2);
+      for (int k : taken) effect_post[k] = 0;
+      if (!(eff && movable(*eff))) effect_post[0] = 0;
+      total = 0;
+      for (double p : effect_post) total += p;
+      if (total <= 0) effect_post.assign(5, 0.2), total = 1;
+    }
     for (double& p : effect_post) p /= total;
     const int ek = static_cast<int>(std::max_element(effect_post.begin(), effect_post.end()) - effect_post.begin());
+    taken.insert(ek);
+    if (!evident)
+      diags.warning("E1062", seq_file, 0, 0, where,
+                    "function '" + F.name + "': no signal at the effector '" + F.effector +
+                        "' follows the receptor; the effect is a guess (" + kEffects[ek] + ")",
+                    "a longer recording, or the effector kept in view, shows the effect");
     Hypothesis& h = H[ek];
     int mk = static_cast<int>(std::max_element(h.mapping_post.begin(), h.mapping_post.end()) - h.mapping_post.begin());
     if (!h.has_signal || h.fit.best_index < 0) {
