@@ -66,7 +66,7 @@ int check_usage(Report& report, const EvalArgs& args) {
 
 int eval_single(Report& report, const EvalArgs& args) {
   int rc = kExitOk;
-  const eval::PairEntry pair{args.pred, args.gt, args.pred_masks, args.gt_seq, 0};
+  const eval::PairEntry pair{args.pred, args.gt, args.pred_masks, args.gt_seq, 0, ""};
   const std::optional<eval::PairResult> r = evaluate_one(report, pair, "", &rc);
   if (!r) return rc;
   if (args.json)
