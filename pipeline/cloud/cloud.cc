@@ -27,4 +27,10 @@ Cloud concatenate(const Cloud& a, const Cloud& b) {
   return out;
 }
 
+Eigen::Vector3d centroid(const Cloud& cloud) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : cloud.points) c += p;
+  return cloud.points.empty() ? c : Eigen::Vector3d(c / static_cast<double>(cloud.points.size()));
+}
+
 }  // namespace efc::pipeline

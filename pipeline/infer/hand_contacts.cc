@@ -40,9 +40,7 @@ std::vector<std::vector<Eigen::Vector3d>> assign_hand_contacts(const std::vector
     if (!t || t->model.size() == 0 || static_cast<int>(t->motion.size()) < n) continue;
     trees[p] = std::make_unique<KdTree>(t->model.points);
     motion[p] = filled_motion(*t);
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& q : t->model.points) c += q;
-    c /= static_cast<double>(t->model.size());
+    const Eigen::Vector3d c = centroid(t->model);
     double r2 = 0;
     for (const Eigen::Vector3d& q : t->model.points) r2 = std::max(r2, (q - c).squaredNorm());
     reach[p] = kContactDistance + 2 * std::sqrt(r2);

@@ -212,9 +212,7 @@ double visibility(const Cloud& surface, const std::string& type, const Eigen::Ve
     }
     return total > 0 ? along / total : 0.0;
   };
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : surface.points) centre += p;
-  centre /= static_cast<double>(surface.size());
+  const Eigen::Vector3d centre = centroid(surface);
   const Eigen::Vector3d a = axis.normalized();
   // Two directions across the axis.
   Eigen::Vector3d e1 = a.unitOrthogonal(), e2 = a.cross(e1);
@@ -246,11 +244,9 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // of a small lever's press outweigh the registration noise. The geometry
   // and the per-frame positions then come from the frames one by one (an
   // average blurs where a motion starts and where it peaks).
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : track.model.points) centroid += p;
-  if (!track.model.points.empty()) centroid /= static_cast<double>(track.model.points.size());
+  const Eigen::Vector3d model_centre = centroid(track.model);
   std::vector<std::vector<int>> part_frames;
-  const Track part = part_samples(track, centroid, kPartBin, &part_frames);
+  const Track part = part_samples(track, model_centre, kPartBin, &part_frames);
   // The hand's track, averaged over runs of up to kHandBin consecutive
   // contact frames: a hand detector's error (~1 cm) is far larger than a
   // knob's or a lever's motion in one frame, while a joint moves little in a
@@ -329,7 +325,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   std::vector<double> q(n, kNaN);
   if (part_decides) {
     std::vector<std::vector<int>> frames_one_by_one;
-    const Articulation a = estimate_articulation_as(part_samples(track, centroid, 1, &frames_one_by_one), type);
+    const Articulation a = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), type);
     part_frames = std::move(frames_one_by_one);
     j.source = "part";
     j.type = type;
