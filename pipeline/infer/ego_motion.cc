@@ -40,10 +40,34 @@ Cloud static_cloud(const Observations& obs, const std::vector<int>& parts, int f
   return c;
 }
 
+// What the camera is registered on: the static parts and the room around
+// them (Observations::background).
+Cloud scene_cloud(const Observations& obs, const std::vector<int>& parts, int frame) {
+  Cloud c = static_cloud(obs, parts, frame);
+  if (frame < static_cast<int>(obs.background.size())) c = concatenate(c, obs.background[frame]);
+  return c;
+}
+
+// Every registered frame's `cloud_of(f)` fused in the refined world frame.
+template <typename CloudOf>
+Cloud fuse_registered(const EgoMotion& ego, const CloudOf& cloud_of) {
+  FusionOptions fo;
+  fo.voxel = 0.006;
+  fo.min_observations = 3;
+  PartFusion fusion(fo);
+  for (size_t f = 0; f < ego.correction.size(); ++f) {
+    if (!ego.registered[f]) continue;
+    Cloud c = cloud_of(static_cast<int>(f));
+    transform_cloud(ego.correction[f], &c);
+    fusion.add_frame(c);
+  }
+  return fusion.fused();
+}
+
 // Registers one frame onto `model` from `init`.
 void register_one(const Observations& obs, const std::vector<int>& parts, const Cloud& model, const KdTree& tree,
                   const IcpOptions& icp, bool coarse_first, int f, const Eigen::Isometry3d& init, EgoMotion* out) {
-  const Cloud c = static_cloud(obs, parts, f);
+  const Cloud c = scene_cloud(obs, parts, f);
   if (c.size() < 50) {
     out->registered[f] = false;
     out->correction[f] = init;
@@ -66,15 +90,28 @@ void register_one(const Observations& obs, const std::vector<int>& parts, const 
   out->inliers[f] = r.inlier_fraction;
 }
 
-// Pass 1: every frame onto the reference frame's points, chained outward
-// from the reference so a frame starts where its neighbour ended.
-void register_chained(const Observations& obs, const std::vector<int>& parts, const Cloud& model,
-                      const IcpOptions& icp, int reference, EgoMotion* out) {
+// Pass 1: every frame onto the reference frame's points, from the tracker's
+// own pose (no correction). Where the scene leaves a direction nearly free (a
+// camera close to a fridge in front of a wall sees parallel planes: a slide
+// along them is barely constrained) ICP leaves that direction where it
+// started, and the tracker's pose is the best guess there: starting from the
+// neighbour's correction instead carried each frame's error along that
+// direction into the next, a random walk of its own (4 cm on one synthetic
+// recording, where the tracker was off by 1.4 cm). A frame that does not
+// register from its own pose is tried again from its registered neighbour's
+// correction (a fast turn).
+void register_from_tracker(const Observations& obs, const std::vector<int>& parts, const Cloud& model,
+                           const IcpOptions& icp, int reference, EgoMotion* out) {
   const KdTree tree(model.points);
   const int n = static_cast<int>(obs.times.size());
-  register_one(obs, parts, model, tree, icp, true, reference, out->correction[reference], out);
-  for (int f = reference + 1; f < n; ++f) register_one(obs, parts, model, tree, icp, true, f, out->correction[f - 1], out);
-  for (int f = reference - 1; f >= 0; --f) register_one(obs, parts, model, tree, icp, true, f, out->correction[f + 1], out);
+  auto one = [&](int f, int neighbour) {
+    register_one(obs, parts, model, tree, icp, true, f, Eigen::Isometry3d::Identity(), out);
+    if (!out->registered[f] && neighbour >= 0 && neighbour < n && out->registered[neighbour])
+      register_one(obs, parts, model, tree, icp, true, f, out->correction[neighbour], out);
+  };
+  one(reference, -1);
+  for (int f = reference + 1; f < n; ++f) one(f, f - 1);
+  for (int f = reference - 1; f >= 0; --f) one(f, f + 1);
 }
 
 // Pass 2: every frame onto the fused model from its pass-1 correction; the
@@ -123,23 +160,13 @@ EgoMotion refine_ego_motion(const Observations& obs, const std::vector<int>& sta
   icp.subsample = 1500;
 
   // Pass 1: onto the reference frame's points.
-  Cloud model = static_cloud(obs, static_parts, out.reference_frame);
-  register_chained(obs, static_parts, model, icp, out.reference_frame, &out);
+  Cloud model = scene_cloud(obs, static_parts, out.reference_frame);
+  register_from_tracker(obs, static_parts, model, icp, out.reference_frame, &out);
   if (progress) progress("infer: camera poses registered (pass 1)");
 
   // Pass 2: onto every registered frame fused (a surface seen from all
   // sides, not one view's).
-  FusionOptions fo;
-  fo.voxel = 0.006;
-  fo.min_observations = 3;
-  PartFusion fusion(fo);
-  for (int f = 0; f < n; ++f) {
-    if (!out.registered[f]) continue;
-    Cloud c = static_cloud(obs, static_parts, f);
-    transform_cloud(out.correction[f], &c);
-    fusion.add_frame(c);
-  }
-  Cloud fused = fusion.fused();
+  Cloud fused = fuse_registered(out, [&](int f) { return scene_cloud(obs, static_parts, f); });
   if (fused.size() >= 200 && fused.has_normals()) {
     model = std::move(fused);
     register_refined(obs, static_parts, model, icp, threads, &out);
@@ -169,8 +196,14 @@ EgoMotion refine_ego_motion(const Observations& obs, const std::vector<int>& sta
   }
   const Eigen::Isometry3d anchor = mean_transform(early).inverse();
   for (Eigen::Isometry3d& T : out.correction) T = anchor * T;
-  transform_cloud(anchor, &model);
-  out.model = std::move(model);
+  // The caller gets the object's static parts alone (the object frame is
+  // fitted to them), not the room: fused, or where too little survives the
+  // fusion (a short, small recording), the reference frame's own points.
+  out.model = fuse_registered(out, [&](int f) { return static_cloud(obs, static_parts, f); });
+  if (out.model.size() < 200 || !out.model.has_normals()) {
+    out.model = static_cloud(obs, static_parts, out.reference_frame);
+    transform_cloud(out.correction[out.reference_frame], &out.model);
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -111,6 +111,14 @@ bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagn
     return true;
   }
 
+  // The hand's mask, when there is one, only keeps the hand out of the
+  // background.
+  std::string hand_mask;
+  for (const auto& [name, role] : meta.parts)
+    if ((role == "hand" || name == "hand") && has_folder(name)) hand_mask = name;
+  if (hand_mask.empty() && has_folder("hand")) hand_mask = "hand";
+  out->background.assign(meta.frames, Cloud{});
+
   // Frames in parallel: each worker takes the next frame; PNG decoding is
   // most of the time here.
   std::atomic<int> next{0}, done{0};
@@ -126,12 +134,21 @@ bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagn
         failed = true;
         break;
       }
+      // Pixels some mask claims: not background.
+      seq::Image8 claimed;
+      claimed.width = depth.width, claimed.height = depth.height, claimed.channels = 1;
+      claimed.pixels.assign(static_cast<size_t>(depth.width) * depth.height, 0);
+      auto claim = [&](const seq::Image8& mask) {
+        if (mask.pixels.size() != claimed.pixels.size()) return;
+        for (size_t i = 0; i < mask.pixels.size(); ++i) claimed.pixels[i] |= mask.pixels[i] != 0;
+      };
       for (PartFrames& pf : out->parts) {
         seq::Image8 mask;
         if (!sequence.read_mask(pf.mask, f, local, &mask)) {
           failed = true;
           break;
         }
+        claim(mask);
         int count = 0;
         for (uint8_t v : mask.pixels) count += v != 0;
         pf.pixels[f] = count;
@@ -143,6 +160,25 @@ bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagn
         thin(&c, pf.role == "object" ? options.max_points_static : options.max_points_moving);
         transform_cloud(out->camera_to_world[f], &c);
         pf.clouds[f] = std::move(c);
+      }
+      if (failed) break;
+      if (options.background) {
+        if (!hand_mask.empty()) {
+          seq::Image8 mask;
+          if (!sequence.read_mask(hand_mask, f, local, &mask)) {
+            failed = true;
+            break;
+          }
+          claim(mask);
+        }
+        for (uint8_t& v : claimed.pixels) v = v ? 0 : 255;  // now: the unclaimed pixels
+        BackprojectOptions room = bp;
+        room.stride = std::max(1, options.background_stride);
+        room.max_depth = options.background_max_depth;
+        Cloud c = backproject(depth, meta.depth_scale, meta.intrinsics, &claimed, room);
+        thin(&c, options.max_points_background);
+        transform_cloud(out->camera_to_world[f], &c);
+        out->background[f] = std::move(c);
       }
       const int d = ++done;
       if (progress && (d % 50 == 0 || d == meta.frames))

@@ -31,6 +31,13 @@ struct Observations {
   std::vector<Eigen::Isometry3d> camera_to_world;  // per frame, as poses.txt gives them
   std::vector<seq::HandPoint> hands;               // per frame; empty without hands.txt
   std::vector<PartFrames> parts;
+  // The room around the object: per frame, the near pixels no mask claims
+  // (no part, not the hand), world frame of poses.txt. Static like the body,
+  // and it closes the body's blind directions: a camera close to a fridge
+  // sees one plane, which cannot fix a slide along itself or a turn about
+  // its normal; the floor and the wall beside it can. Empty with the motion
+  // fallback (no masks, so no telling the room from the object).
+  std::vector<Cloud> background;
   bool motion_masks = false;  // the masks came from the motion fallback
 };
 
@@ -39,6 +46,14 @@ struct ObserveOptions {
   int max_points_static = 6000;   // per frame, for parts of role "object"
   int max_points_moving = 3000;   // per frame, for the others
   int threads = 2;
+  // The background: every background_stride-th pixel, nearer than
+  // background_max_depth (farther, a consumer depth camera's noise is
+  // centimetres: it would blur the model more than it constrains it), at
+  // most max_points_background per frame. background false: none.
+  bool background = true;
+  int background_stride = 4;
+  double background_max_depth = 2.0;
+  int max_points_background = 4000;
 };
 
 // Camera-to-world of a poses.txt line.

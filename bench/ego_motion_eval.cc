@@ -1,0 +1,160 @@
+// How well `efc infer` registers the camera (stage 2, ego-motion), measured
+// against the truth of synthetic recordings (bench/README.md):
+//
+//   ego_motion_eval SUITE_OR_SEQUENCE... [--no-background] [--threads T]
+//
+// Each argument is a sequence folder (with truth/poses.txt, as efc synth
+// writes) or a suite folder (every */seq inside). For each sequence the
+// camera poses are refined as efc infer refines them (observe, then
+// refine_ego_motion on the 'object' parts and, unless --no-background, the
+// room), and compared with the true poses: the error of frame f is
+// E_f = T_true,f T_est,f^-1, less the mean of all E_f (the refined world is
+// anchored on the first second, so it may differ from the true one by a
+// constant). Reported per sequence, for poses.txt as given ("tracker") and
+// for the refined poses: the median and 90th percentile over frames of the
+// position error at the object's centre (mm) and of the rotation error (deg),
+// then the medians of those over all sequences. Exit 1 when a sequence
+// cannot be read.
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline/infer/ego_motion.h"
+#include "pipeline/infer/observations.h"
+#include "sequence/sequence.h"
+
+namespace fs = std::filesystem;
+using efc::pipeline::pose_to_isometry;
+
+namespace {
+
+struct Errors {
+  double pos_median = 0, pos_p90 = 0, rot_median = 0, rot_p90 = 0;  // mm, deg
+};
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(p * (v.size() - 1) + 0.5)];
+}
+
+// The errors of `estimate` against `truth` (camera-to-world per frame),
+// measured at `centre` (world).
+Errors errors(const std::vector<Eigen::Isometry3d>& truth, const std::vector<Eigen::Isometry3d>& estimate,
+              const Eigen::Vector3d& centre) {
+  const size_t n = std::min(truth.size(), estimate.size());
+  std::vector<Eigen::Isometry3d> E(n);
+  std::vector<Eigen::Vector3d> at_centre(n);
+  Eigen::Vector3d mean_centre = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d sum_rotation = Eigen::Matrix3d::Zero();
+  for (size_t f = 0; f < n; ++f) {
+    E[f] = truth[f] * estimate[f].inverse();
+    at_centre[f] = E[f] * centre;
+    mean_centre += at_centre[f];
+    sum_rotation += E[f].rotation();
+  }
+  if (n == 0) return {};
+  mean_centre /= static_cast<double>(n);
+  // The chordal mean of the rotations: the nearest rotation to their sum.
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum_rotation, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d mean_rotation = svd.matrixU() * svd.matrixV().transpose();
+  if (mean_rotation.determinant() < 0) mean_rotation = -mean_rotation;
+  std::vector<double> pos, rot;
+  for (size_t f = 0; f < n; ++f) {
+    pos.push_back(1000 * (at_centre[f] - mean_centre).norm());
+    rot.push_back(Eigen::AngleAxisd(E[f].rotation() * mean_rotation.transpose()).angle() * 180 / 3.14159265358979);
+  }
+  return {percentile(pos, 0.5), percentile(pos, 0.9), percentile(rot, 0.5), percentile(rot, 0.9)};
+}
+
+std::vector<fs::path> sequences_in(const fs::path& arg) {
+  if (fs::exists(arg / "truth/poses.txt")) return {arg};
+  std::vector<fs::path> out;
+  if (fs::is_directory(arg))
+    for (const auto& e : fs::directory_iterator(arg))
+      if (fs::exists(e.path() / "seq/truth/poses.txt")) out.push_back(e.path() / "seq");
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<fs::path> sequences;
+  efc::pipeline::ObserveOptions observe;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--no-background") {
+      observe.background = false;
+    } else if (a == "--threads" && i + 1 < argc) {
+      observe.threads = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "-h" || a == "--help") {
+      std::cout << "usage: ego_motion_eval SUITE_OR_SEQUENCE... [--no-background] [--threads T]\n";
+      return 0;
+    } else {
+      const auto found = sequences_in(a);
+      if (found.empty()) {
+        std::cerr << "ego_motion_eval: " << a << ": no sequence with truth/poses.txt\n";
+        return 1;
+      }
+      sequences.insert(sequences.end(), found.begin(), found.end());
+    }
+  }
+  if (sequences.empty()) {
+    std::cerr << "usage: ego_motion_eval SUITE_OR_SEQUENCE... [--no-background] [--threads T]\n";
+    return 1;
+  }
+  std::printf("%-44s %21s   %21s\n", "", "tracker (poses.txt)", "refined (efc infer)");
+  std::printf("%-44s %10s %10s   %10s %10s\n", "sequence", "mm med/90", "deg med/90", "mm med/90", "deg med/90");
+  std::vector<double> all[8];
+  for (const fs::path& dir : sequences) {
+    efc::Diagnostics diags;
+    efc::seq::Sequence sequence;
+    efc::pipeline::Observations obs;
+    std::vector<efc::seq::Pose> true_poses;
+    if (!sequence.open(dir.string(), diags) || !efc::pipeline::observe(sequence, observe, diags, nullptr, &obs) ||
+        !efc::seq::read_poses((dir / "truth/poses.txt").string(), diags, &true_poses)) {
+      diags.print(std::cerr, false);
+      return 1;
+    }
+    std::vector<int> static_parts;
+    for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p)
+      if (obs.parts[p].role == "object") static_parts.push_back(p);
+    const efc::pipeline::EgoMotion ego = efc::pipeline::refine_ego_motion(obs, static_parts, observe.threads, nullptr);
+    std::vector<Eigen::Isometry3d> truth, refined;
+    for (const auto& p : true_poses) truth.push_back(pose_to_isometry(p));
+    for (size_t f = 0; f < obs.camera_to_world.size() && f < ego.correction.size(); ++f)
+      refined.push_back(ego.correction[f] * obs.camera_to_world[f]);
+    // The object's centre in the world: its pose from the truth, lifted by
+    // half a typical object's height (the pose is at its base).
+    Eigen::Vector3d centre(0, 0, 0.3);
+    std::ifstream pose_file(dir / "truth/object_pose.json");
+    const nlohmann::json pose = nlohmann::json::parse(pose_file, nullptr, false);
+    if (pose.is_object() && pose.contains("object_to_world") && pose["object_to_world"].size() == 16) {
+      const auto& m = pose["object_to_world"];
+      centre = Eigen::Vector3d(m[3].get<double>(), m[7].get<double>(), m[11].get<double>() + 0.3);
+    }
+    const Errors tracker = errors(truth, obs.camera_to_world, centre);
+    const Errors ours = errors(truth, refined, centre);
+    std::printf("%-44s %4.1f/%5.1f %4.2f/%5.2f   %4.1f/%5.1f %4.2f/%5.2f\n",
+                dir.parent_path().filename().string().substr(0, 44).c_str(), tracker.pos_median, tracker.pos_p90,
+                tracker.rot_median, tracker.rot_p90, ours.pos_median, ours.pos_p90, ours.rot_median, ours.rot_p90);
+    const double v[8] = {tracker.pos_median, tracker.pos_p90, tracker.rot_median, tracker.rot_p90,
+                         ours.pos_median,    ours.pos_p90,    ours.rot_median,    ours.rot_p90};
+    for (int k = 0; k < 8; ++k) all[k].push_back(v[k]);
+  }
+  std::printf("%-44s %4.1f/%5.1f %4.2f/%5.2f   %4.1f/%5.1f %4.2f/%5.2f\n", "median over sequences",
+              percentile(all[0], 0.5), percentile(all[1], 0.5), percentile(all[2], 0.5), percentile(all[3], 0.5),
+              percentile(all[4], 0.5), percentile(all[5], 0.5), percentile(all[6], 0.5), percentile(all[7], 0.5));
+  return 0;
+}

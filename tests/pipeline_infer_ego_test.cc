@@ -1,0 +1,165 @@
+// efc infer's camera registration (stage 2) and what it registers on: the
+// room beside the object fixes what one plane of it cannot (a turn about
+// the plane's normal, a slide along it), and the room's points are the
+// pixels no mask claims, near enough for the depth to be good.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "pipeline/cloud/depth_points.h"
+#include "pipeline/infer/ego_motion.h"
+#include "pipeline/infer/observations.h"
+#include "sequence/sequence.h"
+
+namespace {
+
+using namespace efc::pipeline;
+using Eigen::Vector3d;
+constexpr double kPi = 3.14159265358979323846;
+
+// A rectangle of points 1 cm apart: corner + i u + j v, normal n.
+void add_rectangle(const Vector3d& corner, const Vector3d& u, const Vector3d& v, const Vector3d& n, Cloud* c) {
+  const int nu = static_cast<int>(u.norm() / 0.01), nv = static_cast<int>(v.norm() / 0.01);
+  for (int i = 0; i <= nu; ++i)
+    for (int j = 0; j <= nv; ++j) {
+      c->points.push_back(corner + u * i / nu + v * j / nv);
+      c->normals.push_back(n);
+    }
+}
+
+// The world as it is: an object's front face (the plane y = 0, facing -y, as
+// a camera close to a fridge sees it) and the room: the floor, and a cabinet
+// side to its right.
+Cloud front_face() {
+  Cloud c;
+  add_rectangle({-0.2, 0, 0.1}, {0.4, 0, 0}, {0, 0, 0.5}, {0, -1, 0}, &c);
+  return c;
+}
+Cloud room() {
+  Cloud c;
+  add_rectangle({-0.8, -0.8, 0}, {1.6, 0, 0}, {0, 1.0, 0}, {0, 0, 1}, &c);      // floor
+  add_rectangle({0.5, -0.6, 0.02}, {0, 0.8, 0}, {0, 0, 0.8}, {-1, 0, 0}, &c);   // cabinet side
+  return c;
+}
+
+// The tracker's error in frame f: none in the first second (drift starts at
+// zero), then a turn of 1.5 degrees about the face's normal and a slide of
+// 1 cm along it.
+Eigen::Isometry3d tracker_error(int f) {
+  Eigen::Isometry3d E = Eigen::Isometry3d::Identity();
+  if (f < 30) return E;
+  const double s = std::min(1.0, (f - 30) / 10.0);
+  E.linear() = Eigen::AngleAxisd(s * 1.5 * kPi / 180, Vector3d::UnitY()).toRotationMatrix();
+  E.translation() = s * Vector3d(0.01, 0, 0.005);
+  return E;
+}
+
+// Frames of a still scene whose clouds the tracker's error has moved: each
+// frame's points are E_f^-1 (truth) plus 1 mm of noise, so the right
+// correction of frame f is E_f.
+Observations recording(bool with_room) {
+  Observations obs;
+  const int n = 60;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0, 0.001);
+  auto seen = [&](const Cloud& truth, int f) {
+    Cloud c = truth;
+    for (Vector3d& p : c.points) p += Vector3d(noise(rng), noise(rng), noise(rng));
+    transform_cloud(tracker_error(f).inverse(), &c);
+    return c;
+  };
+  PartFrames body;
+  body.name = "body";
+  body.role = "object";
+  const Cloud face = front_face(), scene = room();
+  for (int f = 0; f < n; ++f) {
+    obs.times.push_back(f / 30.0);
+    obs.camera_to_world.push_back(Eigen::Isometry3d::Identity());
+    body.clouds.push_back(seen(face, f));
+    body.pixels.push_back(static_cast<int>(face.size()));
+    obs.background.push_back(with_room ? seen(scene, f) : Cloud{});
+  }
+  obs.parts.push_back(std::move(body));
+  return obs;
+}
+
+// The largest error over the frames of the corrections against E_f: angle
+// (degrees) and translation at the face's centre (m).
+void worst_error(const EgoMotion& ego, double* degrees, double* metres) {
+  *degrees = 0, *metres = 0;
+  const Vector3d centre(0, 0, 0.35);
+  for (size_t f = 0; f < ego.correction.size(); ++f) {
+    const Eigen::Isometry3d residual = tracker_error(static_cast<int>(f)) * ego.correction[f].inverse();
+    *degrees = std::max(*degrees, Eigen::AngleAxisd(residual.rotation()).angle() * 180 / kPi);
+    *metres = std::max(*metres, (residual * centre - centre).norm());
+  }
+}
+
+TEST(PipelineInferEgo, TheRoomFixesTheTurnAndSlideOnePlaneCannotShow) {
+  double degrees = 0, metres = 0;
+  // The object alone: its front face says nothing of a turn about its
+  // normal, so the tracker's 1.5 degrees stay.
+  const EgoMotion alone = refine_ego_motion(recording(false), {0}, 1, nullptr);
+  worst_error(alone, &degrees, &metres);
+  EXPECT_GT(degrees, 1.0);
+  // With the floor and the cabinet beside it, the turn and the slide are
+  // found: the corrections are the tracker's errors.
+  const EgoMotion with_room = refine_ego_motion(recording(true), {0}, 1, nullptr);
+  worst_error(with_room, &degrees, &metres);
+  EXPECT_LT(degrees, 0.1);
+  EXPECT_LT(metres, 0.002);
+  for (bool registered : with_room.registered) EXPECT_TRUE(registered);
+  // The model handed on is the object's, not the room's: nothing of it lies
+  // on the floor or beyond the face.
+  ASSERT_GT(with_room.model.size(), 100u);
+  for (const Vector3d& p : with_room.model.points) {
+    EXPECT_GT(p.z(), 0.09);
+    EXPECT_LT(std::abs(p.y()), 0.01);
+  }
+}
+
+// The room's points of a committed synthetic recording are the pixels no
+// part's or the hand's mask claims, nearer than background_max_depth.
+TEST(PipelineInferEgo, TheRoomIsWhatNoMaskClaims) {
+  const std::string dir =
+      std::string(EFC_SOURCE_DIR) + "/tests/data/synth-suite/s0000_binary-illumination_revolute/seq";
+  efc::Diagnostics diags;
+  efc::seq::Sequence sequence;
+  ASSERT_TRUE(sequence.open(dir, diags));
+  ObserveOptions options;
+  options.threads = 1;
+  Observations obs;
+  ASSERT_TRUE(observe(sequence, options, diags, nullptr, &obs));
+  ASSERT_EQ(obs.background.size(), obs.times.size());
+  const efc::seq::Meta& meta = sequence.meta();
+  int frames_with_room = 0;
+  for (size_t f = 0; f < obs.background.size(); ++f) {
+    const Cloud& room_points = obs.background[f];
+    frames_with_room += !room_points.points.empty();
+    std::vector<efc::seq::Image8> masks;
+    for (const std::string& name : sequence.mask_names()) {
+      masks.emplace_back();
+      ASSERT_TRUE(sequence.read_mask(name, static_cast<int>(f), diags, &masks.back()));
+    }
+    const Eigen::Isometry3d world_to_camera = obs.camera_to_world[f].inverse();
+    for (const Vector3d& p : room_points.points) {
+      const Vector3d q = world_to_camera * p;
+      EXPECT_LE(q.z(), options.background_max_depth + 1e-6);
+      double u = 0, v = 0;
+      ASSERT_TRUE(project(meta.intrinsics, q, &u, &v));
+      const int x = static_cast<int>(std::lround(u)), y = static_cast<int>(std::lround(v));
+      ASSERT_TRUE(x >= 0 && y >= 0 && x < meta.width && y < meta.height);
+      for (const efc::seq::Image8& m : masks)
+        ASSERT_EQ(m.pixels[static_cast<size_t>(y) * m.width + x], 0) << "frame " << f << " pixel " << x << "," << y;
+    }
+  }
+  EXPECT_GT(frames_with_room, static_cast<int>(obs.times.size()) / 2);
+
+  // Off, there is none.
+  options.background = false;
+  ASSERT_TRUE(observe(sequence, options, diags, nullptr, &obs));
+  for (const Cloud& c : obs.background) EXPECT_TRUE(c.points.empty());
+}
+
+}  // namespace
