@@ -71,6 +71,7 @@ bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagn
   // Which parts, from which mask folders: meta.json's parts (the hand left
   // out); without "parts", the role masks.
   out->parts.clear();
+  out->background.clear();
   const std::vector<std::string>& folders = sequence.mask_names();
   auto has_folder = [&](const std::string& n) { return std::binary_search(folders.begin(), folders.end(), n); };
   std::vector<std::pair<std::string, std::string>> parts = meta.parts;
