@@ -15,7 +15,6 @@
 // position error at the object's centre (mm) and of the rotation error (deg),
 // then the medians of those over all sequences. Exit 1 when a sequence
 // cannot be read.
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -56,19 +55,14 @@ Errors errors(const std::vector<Eigen::Isometry3d>& truth, const std::vector<Eig
   std::vector<Eigen::Isometry3d> E(n);
   std::vector<Eigen::Vector3d> at_centre(n);
   Eigen::Vector3d mean_centre = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d sum_rotation = Eigen::Matrix3d::Zero();
   for (size_t f = 0; f < n; ++f) {
     E[f] = truth[f] * estimate[f].inverse();
     at_centre[f] = E[f] * centre;
     mean_centre += at_centre[f];
-    sum_rotation += E[f].rotation();
   }
   if (n == 0) return {};
   mean_centre /= static_cast<double>(n);
-  // The chordal mean of the rotations: the nearest rotation to their sum.
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum_rotation, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d mean_rotation = svd.matrixU() * svd.matrixV().transpose();
-  if (mean_rotation.determinant() < 0) mean_rotation = -mean_rotation;
+  const Eigen::Matrix3d mean_rotation = efc::pipeline::mean_transform(E).rotation();
   std::vector<double> pos, rot;
   for (size_t f = 0; f < n; ++f) {
     pos.push_back(1000 * (at_centre[f] - mean_centre).norm());

@@ -137,10 +137,12 @@ bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagn
       }
       // Pixels some mask claims: not background.
       seq::Image8 claimed;
-      claimed.width = depth.width, claimed.height = depth.height, claimed.channels = 1;
-      claimed.pixels.assign(static_cast<size_t>(depth.width) * depth.height, 0);
+      if (options.background) {
+        claimed.width = depth.width, claimed.height = depth.height, claimed.channels = 1;
+        claimed.pixels.assign(static_cast<size_t>(depth.width) * depth.height, 0);
+      }
       auto claim = [&](const seq::Image8& mask) {
-        if (mask.pixels.size() != claimed.pixels.size()) return;
+        if (!options.background || mask.pixels.size() != claimed.pixels.size()) return;
         for (size_t i = 0; i < mask.pixels.size(); ++i) claimed.pixels[i] |= mask.pixels[i] != 0;
       };
       for (PartFrames& pf : out->parts) {
