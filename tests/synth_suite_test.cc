@@ -13,6 +13,8 @@
 #include <regex>
 #include <set>
 
+#include <nlohmann/json.hpp>
+
 #include "compiler/core/load.h"
 #include "compiler/core/resolve.h"
 #include "synth/suite/example_variation.h"
@@ -222,7 +224,10 @@ TEST(SynthSuite, KnobsStayInTheirRanges) {
       in(k.object_y, r.object_offset, "object_y");
       in(k.camera_distance, r.camera_distance, "camera_distance");
       in(k.camera_height, r.camera_height, "camera_height");
-      in(k.camera_azimuth, r.camera_azimuth, "camera_azimuth");
+      // A side receptor moves the camera to 0.55-0.85 rad round towards it
+      // (ASideReceptorIsFilmedFromItsSide); the drawn range holds otherwise.
+      if (std::abs(k.camera_azimuth) > r.camera_azimuth.hi) EXPECT_LE(std::abs(k.camera_azimuth), 0.85 + 1e-9) << e.name;
+      else in(k.camera_azimuth, r.camera_azimuth, "camera_azimuth");
       in(k.head_bob, r.head_bob, "head_bob");
       in(k.glance, r.glance, "glance");
       in(k.fast_turns, r.fast_turns, "fast_turns");
@@ -303,6 +308,62 @@ TEST(SynthSuite, BadInputsAreErrorsNotCrashes) {
 
   EXPECT_TRUE(plan_suite(-1, 1, kExamples, nullptr, &error).empty());
   EXPECT_NE(error, "");
+}
+
+// A movable part inside another part's box (the air conditioner's louvre in
+// its body, the toaster's carriage) is never in view: such an example gives
+// the suite no function. The same example with the part moved out of the box
+// does.
+TEST(SynthSuite, ExamplesWithAnEnclosedMovingPartAreNotFilmed) {
+  std::vector<suite::ExampleSpec> examples;
+  std::string error;
+  ASSERT_TRUE(suite::load_examples(kExamples, &examples, &error)) << error;
+  std::set<std::string> filmed;
+  for (const auto& f : suite::operable_functions(examples)) filmed.insert(examples[f.example].name);
+  for (const char* hidden : {"air_conditioner", "toaster", "toilet"}) EXPECT_EQ(filmed.count(hidden), 0u) << hidden;
+  for (const char* seen : {"stove", "fridge", "desk_lamp", "kitchen_drawer"}) EXPECT_EQ(filmed.count(seen), 1u) << seen;
+
+  ScratchDir inside, outside;
+  std::ifstream in(kExamples + "/air_conditioner.json");
+  nlohmann::json doc = nlohmann::json::parse(in);
+  std::ofstream(fs::path(inside.path()) / "ac.json") << doc.dump(2);
+  for (auto& part : doc["parts"])
+    if (part["name"] == "louvre") part["geometry"]["box"]["center"] = {0, -0.14, 0.003};  // in front of the body
+  std::ofstream(fs::path(outside.path()) / "ac.json") << doc.dump(2);
+  ASSERT_TRUE(suite::load_examples(inside.path(), &examples, &error)) << error;
+  EXPECT_TRUE(suite::operable_functions(examples).empty());
+  ASSERT_TRUE(suite::load_examples(outside.path(), &examples, &error)) << error;
+  EXPECT_EQ(suite::operable_functions(examples).size(), 3u);
+}
+
+// A receptor on a side face is filmed from that side: the camera stands
+// 0.55-0.85 rad round from the front towards it (positive azimuth: +x).
+TEST(SynthSuite, ASideReceptorIsFilmedFromItsSide) {
+  ScratchDir scratch;
+  int side_entries = 0;
+  for (uint64_t seed : kSeeds) {
+    for (const SuiteEntry& e : plan(40, seed)) {
+      Loaded l = write_and_load(scratch.path(), e.name, e.spec_json, e.files_to_copy);
+      ASSERT_TRUE(l.obj) << e.name << "\n" << describe(l.diags);
+      const Part* base = nullptr;
+      const Part* receptor = nullptr;
+      for (const Part& p : l.obj->parts) {
+        if (p.name == e.receptor) receptor = &p;
+        if (!base && !p.joint) base = &p;
+      }
+      ASSERT_TRUE(base && receptor) << e.name;
+      const double cx = 0.5 * (receptor->bbox_min[0] + receptor->bbox_max[0]);
+      const double side = cx > base->bbox_max[0] ? 1 : cx < base->bbox_min[0] ? -1 : 0;
+      if (side == 0) {  // the front, or a side face it barely stands out of
+        EXPECT_LE(std::abs(e.knobs.camera_azimuth), 0.85 + 1e-9) << e.name;
+        continue;
+      }
+      ++side_entries;
+      EXPECT_GE(side * e.knobs.camera_azimuth, 0.55 - 1e-9) << e.name;
+      EXPECT_LE(side * e.knobs.camera_azimuth, 0.85 + 1e-9) << e.name;
+    }
+  }
+  EXPECT_GE(side_entries, 3);
 }
 
 TEST(SynthSuite, NoExamplesFolderMeansGeneratedOnly) {

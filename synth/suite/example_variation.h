@@ -45,7 +45,8 @@ bool load_examples(const std::string& dir, std::vector<ExampleSpec>* out, std::s
 
 // A function of an example that a suite entry can be about: its receptor is
 // moved by the hand, not by another function (a chain's later links are
-// still shown, but an entry names the link the hand drives).
+// still shown, but an entry names the link the hand drives). Examples with a
+// movable part enclosed in another part's box (never in view) give none.
 struct ExampleFunction {
   size_t example = 0;  // index into the examples
   std::string function, receptor, effector;

@@ -1,5 +1,6 @@
 #include "synth/suite/suite_plan.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include "synth/suite/example_variation.h"
@@ -79,6 +80,26 @@ bool receptor_is_small(const SpecJson& spec, const std::string& receptor,
   return false;
 }
 
+// Which side face the receptor is on: +1 the right (+x), -1 the left, 0 the
+// front or top. Its centre beyond 90 % of the base's half width, and not
+// on the front, puts it on a side.
+int receptor_side(const SpecJson& spec, const std::string& receptor, const std::string& base_dir) {
+  suite::Bounds base, part;
+  std::string ignored;
+  for (const auto& p : spec["parts"]) {
+    if (p["name"] == receptor) suite::add_geometry_bounds(p["geometry"], base_dir, &part, &ignored);
+    else if (!p.contains("joint")) suite::add_geometry_bounds(p["geometry"], base_dir, &base, &ignored);
+  }
+  if (base.empty() || part.empty()) return 0;
+  const double cx = 0.5 * (part.lo[0] + part.hi[0]), cy = 0.5 * (part.lo[1] + part.hi[1]);
+  const double bx = 0.5 * (base.lo[0] + base.hi[0]), hx = 0.5 * (base.hi[0] - base.lo[0]);
+  const double front = base.lo[1] + 0.1 * (base.hi[1] - base.lo[1]);
+  if (hx <= 0 || cy < front) return 0;
+  if (cx > bx + 0.9 * hx) return 1;
+  if (cx < bx - 0.9 * hx) return -1;
+  return 0;
+}
+
 std::string entry_name(int i, const SuiteEntry& e) {
   char index[16];
   std::snprintf(index, sizeof index, "s%04d", i);
@@ -131,6 +152,12 @@ bool plan_entry(int i, uint64_t seed, const std::vector<suite::FunctionPair>& co
   SuiteRng knob_rng(derive_seed(seed, i, kKnobs));
   e->knobs = suite::draw_scene_knobs(knob_rng, forced_noise);
   e->knobs.object_scale = object_scale;
+  // Someone operating a knob on the object's side stands to that side: the
+  // camera's azimuth (drawn within +-0.7 rad of the front) moves to 0.55-0.85
+  // rad towards it, so the side face is seen at an angle. Otherwise a
+  // recording may never show the receptor it is about.
+  if (const int side = receptor_side(spec, e->receptor, base_dir))
+    e->knobs.camera_azimuth = side * (0.55 + 0.3 * std::abs(e->knobs.camera_azimuth) / 0.7);
   e->profile = suite::draw_profile(knob_rng);
   e->seed = derive_seed(seed, i, kSequence);
   e->name = entry_name(i, *e);
