@@ -22,6 +22,7 @@ Cloud part_cloud_in_object(const Observations& obs, int part, int frame,
 namespace {
 
 constexpr size_t kMinPoints = 12;
+constexpr double kRestTolerance = 0.02;  // see "Parts rest most of the time" below
 
 // ICP maps frame points onto the model: the inverse of the part's motion.
 // `seeded`: pass 2. A frame registered in pass 1 starts from its pass-1
@@ -55,10 +56,14 @@ void register_frames(const Observations& obs, int part, const std::vector<Eigen:
     if (from_seed) {
       starts.push_back(seed[f]);
     } else if (last_good >= 0) {
+      // The last registered pose first, then constant velocity (the last
+      // registered step again). Velocity first would carry any step along a
+      // direction the shape cannot show (a lid sliding on its own plane,
+      // which ICP leaves at its start) into every later frame: a steady
+      // drift that looks like a slide.
       starts.push_back(to_model[last_good]);
-      // Constant velocity: the last registered step again, per frame.
       if (before_last_good >= 0 && std::abs(last_good - before_last_good) == 1)
-        starts.insert(starts.begin(), to_model[last_good] * (to_model[before_last_good].inverse() * to_model[last_good]));
+        starts.push_back(to_model[last_good] * (to_model[before_last_good].inverse() * to_model[last_good]));
     }
     if (!from_seed) starts.push_back(Eigen::Isometry3d::Identity());  // the reference configuration
     const Cloud c = part_cloud_in_object(obs, part, f, to_object);
@@ -66,14 +71,27 @@ void register_frames(const Observations& obs, int part, const std::vector<Eigen:
     to_model[f] = starts.front();
     if (c.size() < kMinPoints) return;
     IcpResult best;
-    bool have = false;
+    bool have = false, tried_rest = false;
     for (const Eigen::Isometry3d& start : starts) {
       IcpResult r;
       r.transform = start;
       if (!from_seed) r = icp_point_to_plane(c, model, tree, start, coarse);
       r = icp_point_to_plane(c, model, tree, r.transform, fine);
+      tried_rest = tried_rest || start.isApprox(Eigen::Isometry3d::Identity());
       if (!have || r.inlier_fraction > best.inlier_fraction + 1e-9) best = r, have = true;
       if (best.inlier_fraction > 0.6) break;  // good enough: skip the other starts
+    }
+    // Parts rest most of the time. Where the frame fits the part at rest
+    // about as well as where the last frame left it (as many pairs, and a
+    // point-to-plane RMS within 2 %: a press of a few millimetres along the
+    // normal shows there), it is at rest: along a direction the shape cannot
+    // show (a door sliding on its own plane) ICP keeps its start, and
+    // chained starts would wander there frame after frame.
+    if (!from_seed && !tried_rest && best.inlier_fraction > 0.5) {
+      IcpResult r = icp_point_to_plane(c, model, tree, Eigen::Isometry3d::Identity(), coarse);
+      r = icp_point_to_plane(c, model, tree, r.transform, fine);
+      if (r.inlier_fraction >= best.inlier_fraction - kRestTolerance && r.rmse <= best.rmse * (1 + kRestTolerance))
+        best = r;
     }
     const IcpResult& r = best;
     const bool good = r.inlier_fraction > 0.5 && r.correspondences >= kMinPoints;

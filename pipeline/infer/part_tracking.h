@@ -4,8 +4,11 @@
 // point-to-plane ICP: first the frame that sees most of it, then the fusion
 // of every registered frame (a fuller surface, and the hand's occlusion of
 // one frame no longer matters). Frames are visited outward from the
-// reference, each starting from its neighbour's motion extrapolated at
-// constant velocity, so a fast door does not lose the track.
+// reference, each starting from its neighbour's motion (then that motion
+// extrapolated at constant velocity, so a fast door does not lose the track,
+// then the rest pose). A frame that fits the part at rest as well as where
+// its neighbour left it is at rest: chained starts would otherwise wander
+// along what the shape cannot show (a door sliding on its own plane).
 #pragma once
 
 #include <Eigen/Geometry>
