@@ -1,0 +1,270 @@
+// How well `efc infer` tracks each moving part (stage 3) and types its joint
+// (stage 4), measured against the truth of synthetic recordings
+// (bench/README.md):
+//
+//   part_motion_eval SUITE_OR_SEQUENCE... [--threads T] [--part NAME] [--frames]
+//
+// Each argument is a sequence folder (with truth/, as efc synth writes) or a
+// suite folder (every */seq inside). Each sequence is observed and its
+// camera registered as efc infer does it; then every part with a joint in
+// truth/spec.json is tracked (track_part) in the refined world frame and its
+// joint estimated (estimate_joint, with the hand's contacts). The true motion
+// of the part from the track's reference frame to frame f follows from
+// truth/joints.csv and the true joints (chained through moving parents).
+// Per part, one line: the true joint type and travel (max rotation deg, max
+// displacement of the part's centre mm), the share of frames tracked, the
+// median and 90th percentile over tracked frames of the rotation error (deg)
+// and of the centre's position error (mm), then the part track's type, the
+// hand track's type and the type chosen (x: not the true type; revolute and
+// continuous count as one, as efc eval counts them); last, how many were
+// typed right. The refined world differs from the true one by a few
+// millimetres (ego_motion_eval), which sets the floor. --part NAME: only that
+// part; --frames: every frame's true and tracked motion too.
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "pipeline/infer/ego_motion.h"
+#include "pipeline/infer/hand_contacts.h"
+#include "pipeline/infer/joint_estimate.h"
+#include "pipeline/infer/observations.h"
+#include "pipeline/infer/part_tracking.h"
+#include "sequence/sequence.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(p * (v.size() - 1) + 0.5)];
+}
+
+std::vector<fs::path> sequences_in(const fs::path& arg) {
+  if (fs::exists(arg / "truth/joints.csv")) return {arg};
+  std::vector<fs::path> out;
+  if (fs::is_directory(arg))
+    for (const auto& e : fs::directory_iterator(arg))
+      if (fs::exists(e.path() / "seq/truth/joints.csv")) out.push_back(e.path() / "seq");
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+Eigen::Vector3d vec3(const json& v) { return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()}; }
+
+// The true joints: per part, its parent, type, axis and origin (object frame).
+struct TrueJoint {
+  std::string parent, type;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ(), origin = Eigen::Vector3d::Zero();
+};
+
+Eigen::Isometry3d joint_transform(const TrueJoint& j, double q) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  if (j.type == "prismatic") {
+    T.translation() = q * j.axis.normalized();
+  } else if (j.type == "revolute" || j.type == "continuous") {
+    T.linear() = Eigen::AngleAxisd(q, j.axis.normalized()).toRotationMatrix();
+    T.translation() = j.origin - T.linear() * j.origin;
+  }
+  return T;
+}
+
+// The part's pose in the object frame at the joint positions of one frame.
+Eigen::Isometry3d part_pose(const std::map<std::string, TrueJoint>& joints, const std::map<std::string, double>& q,
+                            const std::string& part) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  std::string p = part;
+  for (int depth = 0; depth < 32; ++depth) {
+    const auto j = joints.find(p);
+    if (j == joints.end()) break;
+    const auto qi = q.find(p);
+    T = joint_transform(j->second, qi == q.end() ? 0.0 : qi->second) * T;
+    p = j->second.parent;
+  }
+  return T;
+}
+
+// truth/joints.csv: t, then one column per moving part.
+bool read_joint_positions(const fs::path& file, std::vector<std::map<std::string, double>>* rows) {
+  std::ifstream in(file);
+  std::string line;
+  if (!std::getline(in, line)) return false;
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string cell; std::getline(header, cell, ',');) names.push_back(cell);
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::map<std::string, double> q;
+    size_t c = 0;
+    for (std::string cell; std::getline(row, cell, ','); ++c)
+      if (c > 0 && c < names.size()) q[names[c]] = std::atof(cell.c_str());
+    rows->push_back(q);
+  }
+  return true;
+}
+
+Eigen::Isometry3d matrix16(const json& m) {
+  Eigen::Matrix4d M;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) M(r, c) = m[4 * r + c].get<double>();
+  Eigen::Isometry3d T;
+  T.matrix() = M;
+  return T;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const char* usage = "usage: part_motion_eval SUITE_OR_SEQUENCE... [--threads T] [--part NAME] [--frames]\n";
+  std::vector<fs::path> sequences;
+  efc::pipeline::ObserveOptions observe;
+  std::string only_part;
+  bool per_frame = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--threads" && i + 1 < argc) {
+      observe.threads = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--frames") {
+      per_frame = true;
+    } else if (a == "--part" && i + 1 < argc) {
+      only_part = argv[++i];
+    } else if (a == "-h" || a == "--help") {
+      std::cout << usage;
+      return 0;
+    } else {
+      const auto found = sequences_in(a);
+      if (found.empty()) {
+        std::cerr << "part_motion_eval: " << a << ": no sequence with truth/joints.csv\n";
+        return 1;
+      }
+      sequences.insert(sequences.end(), found.begin(), found.end());
+    }
+  }
+  if (sequences.empty()) {
+    std::cerr << usage;
+    return 1;
+  }
+  std::printf("%-30s %-14s %-10s %6s %6s %5s %11s %11s  %-10s %-10s %-10s\n", "sequence", "part", "truth",
+              "deg", "mm", "trk%", "deg med/90", "mm med/90", "from part", "from hand", "chosen");
+  int parts_total[2] = {0, 0}, typed_right[2] = {0, 0};  // [0] moving joints, [1] fixed parts
+  for (const fs::path& dir : sequences) {
+    efc::Diagnostics diags;
+    efc::seq::Sequence sequence;
+    efc::pipeline::Observations obs;
+    if (!sequence.open(dir.string(), diags) || !efc::pipeline::observe(sequence, observe, diags, nullptr, &obs)) {
+      diags.print(std::cerr, false);
+      return 1;
+    }
+    std::ifstream spec_file(dir / "truth/spec.json"), pose_file(dir / "truth/object_pose.json");
+    const json spec = json::parse(spec_file, nullptr, false);
+    const json pose = json::parse(pose_file, nullptr, false);
+    std::vector<std::map<std::string, double>> q_rows;
+    if (!spec.is_object() || !pose.is_object() || !read_joint_positions(dir / "truth/joints.csv", &q_rows)) {
+      std::cerr << "part_motion_eval: " << dir.string() << ": truth unreadable\n";
+      return 1;
+    }
+    std::map<std::string, TrueJoint> joints;
+    for (const json& p : spec["parts"]) {
+      if (!p.contains("joint")) continue;
+      TrueJoint j;
+      j.parent = p["joint"].value("parent", "");
+      j.type = p["joint"].value("type", "fixed");
+      if (p["joint"].contains("axis")) j.axis = vec3(p["joint"]["axis"]);
+      if (p["joint"].contains("origin")) j.origin = vec3(p["joint"]["origin"]);
+      joints[p["name"].get<std::string>()] = j;
+    }
+    const Eigen::Isometry3d object_to_world = matrix16(pose["object_to_world"]);
+
+    std::vector<int> static_parts;
+    for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p)
+      if (obs.parts[p].role == "object") static_parts.push_back(p);
+    const efc::pipeline::EgoMotion ego = efc::pipeline::refine_ego_motion(obs, static_parts, observe.threads, nullptr);
+    const int n = static_cast<int>(obs.times.size());
+    // Tracked in the refined world (efc infer uses an object frame fitted to
+    // the static model: the same up to one rigid transform).
+    std::vector<Eigen::Isometry3d> to_world(ego.correction.begin(), ego.correction.end());
+    to_world.resize(n, Eigen::Isometry3d::Identity());
+    std::vector<std::unique_ptr<efc::pipeline::PartTrack>> tracks(obs.parts.size());
+    std::vector<const efc::pipeline::PartTrack*> tracked(obs.parts.size(), nullptr);
+    for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
+      const auto j = joints.find(obs.parts[p].name);
+      if (j == joints.end() || (!only_part.empty() && obs.parts[p].name != only_part)) continue;
+      tracks[p] = std::make_unique<efc::pipeline::PartTrack>(efc::pipeline::track_part(obs, p, to_world));
+      tracked[p] = tracks[p].get();
+    }
+    std::vector<Eigen::Vector3d> hand(n, Eigen::Vector3d::Constant(std::nan("")));
+    for (int f = 0; f < n && f < static_cast<int>(obs.hands.size()); ++f)
+      if (obs.hands[f].seen) hand[f] = Eigen::Vector3d(obs.hands[f].p[0], obs.hands[f].p[1], obs.hands[f].p[2]);
+    const auto hand_points = efc::pipeline::assign_hand_contacts(hand, tracked);
+
+    for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
+      if (!tracks[p]) continue;
+      const efc::pipeline::PartTrack& track = *tracks[p];
+      const std::string& name = obs.parts[p].name;
+      const std::string true_type = joints[name].type;
+      const efc::pipeline::JointEstimate est = efc::pipeline::estimate_joint(track, hand_points[p]);
+      // As efc eval scores it: revolute and continuous are one type.
+      auto turns = [](const std::string& t) { return t == "revolute" || t == "continuous"; };
+      const bool right = est.type == true_type || (turns(est.type) && turns(true_type));
+      const int kind = true_type == "fixed" ? 1 : 0;
+      ++parts_total[kind];
+      typed_right[kind] += right;
+      std::vector<double> rot_err, pos_err;
+      double travel_rot = 0, travel_pos = 0;
+      const int ref = track.reference_frame;
+      if (ref >= 0 && ref < static_cast<int>(q_rows.size())) {
+        const Eigen::Vector3d centre_world = efc::pipeline::centroid(track.model);
+        const Eigen::Isometry3d ref_pose = part_pose(joints, q_rows[ref], name);
+        for (int f = 0; f < n && f < static_cast<int>(q_rows.size()); ++f) {
+          const Eigen::Isometry3d truth =
+              object_to_world * part_pose(joints, q_rows[f], name) * ref_pose.inverse() * object_to_world.inverse();
+          travel_rot = std::max(travel_rot, Eigen::AngleAxisd(truth.rotation()).angle() * kDeg);
+          travel_pos = std::max(travel_pos, 1000 * (truth * centre_world - centre_world).norm());
+          if (!track.tracked[f]) {
+            if (per_frame)
+              std::printf("  %3d true %6.1f deg %6.1f mm  untracked (%zu points, inl %.2f)\n", f,
+                          Eigen::AngleAxisd(truth.rotation()).angle() * kDeg,
+                          1000 * (truth * centre_world - centre_world).norm(), obs.parts[p].clouds[f].size(),
+                          track.inliers[f]);
+            continue;
+          }
+          const Eigen::Isometry3d& m = track.motion[f];
+          if (per_frame)
+            std::printf("  %3d true %6.1f deg %6.1f mm  tracked %6.1f deg %6.1f mm  err %5.1f mm  inl %.2f cond %.3f\n", f,
+                        Eigen::AngleAxisd(truth.rotation()).angle() * kDeg,
+                        1000 * (truth * centre_world - centre_world).norm(),
+                        Eigen::AngleAxisd(m.rotation()).angle() * kDeg, 1000 * (m * centre_world - centre_world).norm(),
+                        1000 * (m * centre_world - truth * centre_world).norm(), track.inliers[f], track.conditioning[f]);
+          rot_err.push_back(Eigen::AngleAxisd(m.rotation() * truth.rotation().transpose()).angle() * kDeg);
+          pos_err.push_back(1000 * (m * centre_world - truth * centre_world).norm());
+        }
+      }
+      std::printf("%-30s %-14s %-10s %6.1f %6.1f %5.0f %5.2f/%5.2f %5.1f/%5.1f  %-10s %-10s %-10s%s\n",
+                  dir.parent_path().filename().string().substr(0, 30).c_str(), name.substr(0, 14).c_str(),
+                  true_type.c_str(), travel_rot, travel_pos, 100.0 * track.frames_tracked / std::max(1, n),
+                  percentile(rot_err, 0.5), percentile(rot_err, 0.9), percentile(pos_err, 0.5),
+                  percentile(pos_err, 0.9), est.has_part_track ? est.from_part.type.c_str() : "-",
+                  est.has_hand_track ? est.from_hand.type.c_str() : "-", est.type.c_str(), right ? "" : "  x");
+      std::fflush(stdout);
+    }
+  }
+  std::printf("typed right: %d of %d moving joints, %d of %d fixed parts\n", typed_right[0], parts_total[0],
+              typed_right[1], parts_total[1]);
+  return 0;
+}
