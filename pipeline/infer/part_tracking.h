@@ -5,10 +5,10 @@
 // of every registered frame (a fuller surface, and the hand's occlusion of
 // one frame no longer matters). Frames are visited outward from the
 // reference, each starting from its neighbour's motion (then that motion
-// extrapolated at constant velocity, so a fast door does not lose the track,
-// then the rest pose). A frame that fits the part at rest as well as where
-// its neighbour left it is at rest: chained starts would otherwise wander
-// along what the shape cannot show (a door sliding on its own plane).
+// extrapolated at constant velocity, then the rest pose). A part that jumps
+// out of ICP's reach between two frames (a lid a servo snaps open) is found
+// again by a search over turns about its principal axes; a thin plate's
+// model gets its unseen face for that (an open lid shows its underside).
 #pragma once
 
 #include <Eigen/Geometry>
