@@ -4,11 +4,8 @@
 // point-to-plane ICP: first the frame that sees most of it, then the fusion
 // of every registered frame (a fuller surface, and the hand's occlusion of
 // one frame no longer matters). Frames are visited outward from the
-// reference, each starting from its neighbour's motion (then that motion
-// extrapolated at constant velocity, then the rest pose). A part that jumps
-// out of ICP's reach between two frames (a lid a servo snaps open) is found
-// again by a search over turns about its principal axes; a thin plate's
-// model gets its unseen face for that (an open lid shows its underside).
+// reference, each starting from its neighbour's motion extrapolated at
+// constant velocity, so a fast door does not lose the track.
 #pragma once
 
 #include <Eigen/Geometry>
