@@ -30,9 +30,12 @@
 
 #include "pipeline/infer/ego_motion.h"
 #include "pipeline/infer/observations.h"
+#include "bench/truth_sequences.h"
 #include "sequence/sequence.h"
 
 namespace fs = std::filesystem;
+using efc::bench::percentile;
+using efc::bench::sequences_in;
 using efc::pipeline::pose_to_isometry;
 
 namespace {
@@ -40,12 +43,6 @@ namespace {
 struct Errors {
   double pos_median = 0, pos_p90 = 0, rot_median = 0, rot_p90 = 0;  // mm, deg
 };
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<size_t>(p * (v.size() - 1) + 0.5)];
-}
 
 // The errors of `estimate` against `truth` (camera-to-world per frame),
 // measured at `centre` (world).
@@ -71,16 +68,6 @@ Errors errors(const std::vector<Eigen::Isometry3d>& truth, const std::vector<Eig
   return {percentile(pos, 0.5), percentile(pos, 0.9), percentile(rot, 0.5), percentile(rot, 0.9)};
 }
 
-std::vector<fs::path> sequences_in(const fs::path& arg) {
-  if (fs::exists(arg / "truth/poses.txt")) return {arg};
-  std::vector<fs::path> out;
-  if (fs::is_directory(arg))
-    for (const auto& e : fs::directory_iterator(arg))
-      if (fs::exists(e.path() / "seq/truth/poses.txt")) out.push_back(e.path() / "seq");
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -96,7 +83,7 @@ int main(int argc, char** argv) {
       std::cout << "usage: ego_motion_eval SUITE_OR_SEQUENCE... [--no-background] [--threads T]\n";
       return 0;
     } else {
-      const auto found = sequences_in(a);
+      const auto found = sequences_in(a, "truth/poses.txt");
       if (found.empty()) {
         std::cerr << "ego_motion_eval: " << a << ": no sequence with truth/poses.txt\n";
         return 1;

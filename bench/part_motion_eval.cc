@@ -41,30 +41,17 @@
 #include "pipeline/infer/joint_estimate.h"
 #include "pipeline/infer/observations.h"
 #include "pipeline/infer/part_tracking.h"
+#include "bench/truth_sequences.h"
 #include "sequence/sequence.h"
 
 namespace fs = std::filesystem;
+using efc::bench::percentile;
+using efc::bench::sequences_in;
 using nlohmann::json;
 
 namespace {
 
 constexpr double kDeg = 180.0 / 3.14159265358979323846;
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[static_cast<size_t>(p * (v.size() - 1) + 0.5)];
-}
-
-std::vector<fs::path> sequences_in(const fs::path& arg) {
-  if (fs::exists(arg / "truth/joints.csv")) return {arg};
-  std::vector<fs::path> out;
-  if (fs::is_directory(arg))
-    for (const auto& e : fs::directory_iterator(arg))
-      if (fs::exists(e.path() / "seq/truth/joints.csv")) out.push_back(e.path() / "seq");
-  std::sort(out.begin(), out.end());
-  return out;
-}
 
 Eigen::Vector3d vec3(const json& v) { return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()}; }
 
@@ -148,7 +135,7 @@ int main(int argc, char** argv) {
       std::cout << usage;
       return 0;
     } else {
-      const auto found = sequences_in(a);
+      const auto found = sequences_in(a, "truth/joints.csv");
       if (found.empty()) {
         std::cerr << "part_motion_eval: " << a << ": no sequence with truth/joints.csv\n";
         return 1;
