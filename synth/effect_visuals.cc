@@ -88,9 +88,12 @@ void EffectVisuals::update(mjModel* m, mjData* d, const efc_mj::Controller& cont
   }
   for (const auto& [row, mat] : glows_) {
     const efc_rt::EffectParams& e = controller.binding(row).params.effect;
-    const double span = e.e_hi - e.e_lo;
-    const double f = span != 0 ? (controller.readout(row).s_E - e.e_lo) / span : 0;
-    m->mat_emission[mat] = static_cast<float>(std::clamp(f, 0.0, 1.0));
+    // The glow follows the light's output (lumens), not the mapping's
+    // progress from e_lo to e_hi: a press that dims (range [36, 0]) takes
+    // a lit LED dark.
+    const double brightest = std::max(e.e_lo, e.e_hi);
+    const double f = brightest > 0 ? controller.readout(row).s_E / brightest : 0;
+    m->mat_emission[mat] = static_cast<float>(kGlowEmission * std::clamp(f, 0.0, 1.0));
   }
 }
 

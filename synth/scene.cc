@@ -22,6 +22,16 @@ std::string vec(const Vector3d& v) { return num(v.x()) + " " + num(v.y()) + " " 
 std::string rgb(const std::array<double, 3>& c) { return num(c[0]) + " " + num(c[1]) + " " + num(c[2]); }
 std::string rgba(const std::array<double, 3>& c, double a = 1) { return rgb(c) + " " + num(a); }
 
+// A lamp's bulb or LED seen unlit: grey glass, its colour at kUnlitAlbedo
+// (scene.h), so that lighting it (its material's emission, effect_visuals)
+// shows. Without it a white bulb looks the same on and off, however bright
+// the light. `attr` is the geom's rgba (MuJoCo's default where absent).
+std::string unlit_rgba(const char* attr) {
+  double c[4] = {0.5, 0.5, 0.5, 1};
+  if (attr) std::sscanf(attr, "%lf %lf %lf %lf", &c[0], &c[1], &c[2], &c[3]);
+  return rgba({c[0] * kUnlitAlbedo, c[1] * kUnlitAlbedo, c[2] * kUnlitAlbedo}, c[3]);
+}
+
 // Eight looks for the room: floor tiles, wall paint, counter, cabinet, clutter.
 struct RoomStyle {
   std::array<double, 3> floor1, floor2, wall, counter, cabinet, clutter1, clutter2;
@@ -190,8 +200,10 @@ bool build_scene_mjcf(const Object& obj, const Layout& layout, const SceneKnobs&
     for (const Function& f : obj.functions) {
       if (f.name != fn) continue;
       if (tinyxml2::XMLElement* body = find_body(world, f.effector))
-        for (tinyxml2::XMLElement* g = body->FirstChildElement("geom"); g; g = g->NextSiblingElement("geom"))
+        for (tinyxml2::XMLElement* g = body->FirstChildElement("geom"); g; g = g->NextSiblingElement("geom")) {
           g->SetAttribute("material", (kGlowMaterialPrefix + fn).c_str());
+          g->SetAttribute("rgba", unlit_rgba(g->Attribute("rgba")).c_str());
+        }
     }
   }
 

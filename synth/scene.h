@@ -22,6 +22,10 @@ constexpr const char* kCamera = "efc_synth_camera";
 constexpr const char* kHandBody = "efc_synth_hand";
 constexpr const char* kAirPrefix = "efc_synth_air_";  // efc_synth_air_<function>_<i>
 constexpr const char* kGlowMaterialPrefix = "efc_synth_glow_";  // efc_synth_glow_<function>
+// A lamp's effector unlit reflects this fraction of its colour; lit, its
+// material's emission (up to kGlowEmission) adds its colour back and more.
+constexpr double kUnlitAlbedo = 0.45;
+constexpr double kGlowEmission = 1.4;
 
 struct Layout {
   Eigen::Isometry3d object_to_world = Eigen::Isometry3d::Identity();

@@ -44,10 +44,11 @@ Object load_example(const std::string& name) {
   return *obj;
 }
 
-// Synthesises `example` into dir/name and returns the folder.
-std::string make_sequence(const fs::path& dir, const std::string& example, synth::NoiseLevel noise,
-                          uint64_t seed, int frames, int width, int height, const std::string& profile = "sweep") {
-  Object obj = load_example(example);
+// Synthesises `obj` (the example `example`, maybe changed) into
+// dir/<example>_<seed> and returns the folder.
+std::string make_sequence_of(const Object& obj, const fs::path& dir, const std::string& example,
+                             const std::string& spec_json, synth::NoiseLevel noise, uint64_t seed, int frames,
+                             int width, int height, const std::string& profile) {
   synth::SynthOptions opts;
   opts.frames = frames;
   opts.width = width;
@@ -55,7 +56,7 @@ std::string make_sequence(const fs::path& dir, const std::string& example, synth
   opts.seed = seed;
   opts.knobs.noise = noise;
   opts.threads = 2;
-  opts.spec_json = read_file(std::string(EFC_SOURCE_DIR) + "/examples/" + example + ".json");
+  opts.spec_json = spec_json;
   std::string error;
   int line = 0;
   bool io = false;
@@ -65,6 +66,14 @@ std::string make_sequence(const fs::path& dir, const std::string& example, synth
   EXPECT_EQ(synth::synthesize(obj, opts, out, diags, nullptr), 0);
   for (const Diagnostic& d : diags.items()) ADD_FAILURE() << format_text(d);
   return out;
+}
+
+// Synthesises `example` into dir/<example>_<seed> and returns the folder.
+std::string make_sequence(const fs::path& dir, const std::string& example, synth::NoiseLevel noise,
+                          uint64_t seed, int frames, int width, int height, const std::string& profile = "sweep") {
+  return make_sequence_of(load_example(example), dir, example,
+                          read_file(std::string(EFC_SOURCE_DIR) + "/examples/" + example + ".json"), noise, seed,
+                          frames, width, height, profile);
 }
 
 Isometry3d object_to_world(const std::string& seq) {
@@ -337,6 +346,62 @@ std::map<std::string, std::string> folder_bytes(const fs::path& dir) {
   for (const auto& e : fs::recursive_directory_iterator(dir))
     if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = read_file(e.path());
   return files;
+}
+
+// A lamp's bulb looks lit while its light is on and unlit while it is off,
+// whichever way its range runs: a white bulb is no brighter lit than unlit
+// unless the unlit glass is grey, and a press that dims ([450, 0]) must take
+// it dark, not light it. (The examples' bulbs hide under shades and hoods at
+// a test's resolution: a box with a bulb on its front and a button.)
+TEST(SynthLampGlow, TheBulbIsBrighterWhileTheLightIsOn) {
+  TempDir dir("efc-synth-glow");
+  for (const bool dimming : {false, true}) {
+    const std::string range = dimming ? "[450, 0]" : "[0, 450]";
+    const std::string spec = R"({"efc": 1, "name": "glow", "parts": [
+      {"name": "body", "geometry": {"box": {"size": [0.3, 0.2, 0.2], "center": [0, 0, 0.1]}}, "rgba": [0.3, 0.3, 0.3, 1]},
+      {"name": "bulb", "geometry": {"sphere": {"radius": 0.05, "center": [0.07, -0.1, 0.12]}},
+       "rgba": [1, 0.95, 0.85, 1], "joint": {"type": "fixed", "parent": "body"}},
+      {"name": "button", "geometry": {"box": {"size": [0.05, 0.02, 0.05], "center": [-0.08, -0.11, 0.12]}},
+       "joint": {"type": "prismatic", "parent": "body", "axis": [0, 1, 0], "range": [0, 0.01],
+                 "spring": {"stiffness": 80, "rest": 0}}}],
+      "functions": [{"name": "light", "receptor": "button", "effector": "bulb", "mapping": {"type": "binary"},
+                     "effect": {"type": "illumination", "range": )" + range + R"(}}]})";
+    const fs::path spec_path = dir.path() / (dimming ? "dim.json" : "lit.json");
+    std::ofstream(spec_path) << spec;
+    Diagnostics load_diags;
+    std::optional<Object> obj = load_spec(spec_path.string(), {}, load_diags);
+    ASSERT_TRUE(obj.has_value());
+    const std::string seq = make_sequence_of(*obj, dir.path() / (dimming ? "dim" : "lit"), "glow", spec,
+                                             synth::NoiseLevel::None, 1, 40, 160, 120, "sweep");
+    seq::Sequence s;
+    Diagnostics diags;
+    ASSERT_TRUE(s.open(seq, diags));
+    const auto effects = read_csv_rows(seq + "/truth/effects.csv");
+    double sum[2] = {0, 0};
+    int frames[2] = {0, 0};
+    for (int f = 0; f < static_cast<int>(effects.size()); ++f) {
+      const double lumens = effects[f].at("light.s_E");
+      if (lumens != 0 && lumens != 450) continue;
+      seq::Image8 rgb, mask;
+      ASSERT_TRUE(s.read_rgb(f, diags, &rgb));
+      ASSERT_TRUE(s.read_mask("bulb", f, diags, &mask));
+      double luminance = 0;
+      int pixels = 0;
+      for (int i = 0; i < rgb.width * rgb.height; ++i) {
+        if (!mask.pixels[i]) continue;
+        const uint8_t* c = &rgb.pixels[3 * i];
+        luminance += (0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]) / 255.0;
+        ++pixels;
+      }
+      if (pixels < 4) continue;
+      sum[lumens == 450] += luminance / pixels;
+      ++frames[lumens == 450];
+    }
+    ASSERT_GT(frames[0], 3) << range;
+    ASSERT_GT(frames[1], 3) << range;
+    EXPECT_GT(sum[1] / frames[1], sum[0] / frames[0] + 0.2) << range << ": lit " << sum[1] / frames[1]
+                                                           << ", unlit " << sum[0] / frames[0];
+  }
 }
 
 // The same seed gives the same bytes (noise included, frames written by
