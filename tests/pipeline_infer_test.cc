@@ -241,6 +241,27 @@ TEST(PipelineInfer, AGraspHoldsOnWhileThePartsRegistrationFails) {
   for (int f = 0; f < frames; ++f) EXPECT_FALSE(held[1][f].allFinite() || held[2][f].allFinite());
 }
 
+// The hand touches receptors; effectors and object parts move because a
+// function drives them (or not at all): their contacts are dropped, after
+// each contact went to its nearest part. Without receptor roles, all stay.
+TEST(PipelineInfer, OnlyReceptorsKeepTheHandsContacts) {
+  const Vector3d p(0.1, 0.2, 0.3);
+  const std::vector<std::vector<Vector3d>> contacts(5, std::vector<Vector3d>(3, p));
+  auto kept = contacts;
+  keep_receptor_contacts({"object", "receptor", "effector", "receptor+effector", "receptor"}, &kept);
+  for (int f = 0; f < 3; ++f) {
+    EXPECT_FALSE(kept[0][f].allFinite());
+    EXPECT_TRUE(kept[1][f].isApprox(p));
+    EXPECT_FALSE(kept[2][f].allFinite());
+    EXPECT_FALSE(kept[3][f].allFinite());
+    EXPECT_TRUE(kept[4][f].isApprox(p));
+  }
+  kept = contacts;
+  keep_receptor_contacts({"object", "handle", "spout", "lid", "knob"}, &kept);
+  for (const auto& part : kept)
+    for (const Vector3d& q : part) EXPECT_TRUE(q.isApprox(p));
+}
+
 TEST(PipelineInfer, JointMotionTurnsAboutTheAxisLine) {
   JointEstimate j;
   j.type = "revolute";

@@ -74,4 +74,13 @@ std::vector<std::vector<Eigen::Vector3d>> assign_hand_contacts(const std::vector
   return out;
 }
 
+void keep_receptor_contacts(const std::vector<std::string>& roles,
+                            std::vector<std::vector<Eigen::Vector3d>>* contacts) {
+  if (std::find(roles.begin(), roles.end(), "receptor") == roles.end()) return;
+  for (size_t p = 0; p < contacts->size() && p < roles.size(); ++p)
+    if (roles[p] != "receptor")
+      std::fill((*contacts)[p].begin(), (*contacts)[p].end(),
+                Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+}
+
 }  // namespace efc::pipeline

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include <string>
 #include <vector>
 
 #include "pipeline/infer/part_tracking.h"
@@ -32,5 +33,16 @@ std::vector<Eigen::Isometry3d> filled_motion(const PartTrack& track);
 // and lies within kContactDistance plus the part's diameter of its model.
 std::vector<std::vector<Eigen::Vector3d>> assign_hand_contacts(const std::vector<Eigen::Vector3d>& hand,
                                                                const std::vector<const PartTrack*>& tracks);
+
+// hands.txt is where the hand touches a receptor (sequence.md); an effector
+// moves because a function drives it. So after assign_hand_contacts (which
+// gives each contact to the nearest part, so that a hand on a lamp is not
+// one on the switch beside it), only parts whose role is "receptor" alone
+// keep their contacts: not effectors, not a chain's middle part
+// ("receptor+effector", driven too), not "object" parts. Where no part has
+// the role "receptor" (masks named by part only) every part keeps its own.
+// roles[p] is part p's role; contacts[p] as assign_hand_contacts returns.
+void keep_receptor_contacts(const std::vector<std::string>& roles,
+                            std::vector<std::vector<Eigen::Vector3d>>* contacts);
 
 }  // namespace efc::pipeline

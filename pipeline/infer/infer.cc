@@ -207,6 +207,10 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     std::vector<const PartTrack*> tracked(obs.parts.size(), nullptr);
     for (int p : moving_parts) tracked[p] = tracks[p].get();
     hand_points = assign_hand_contacts(hand, tracked);
+    // Only receptors keep the hand's contacts (an effector is driven).
+    std::vector<std::string> roles;
+    for (const PartFrames& pf : obs.parts) roles.push_back(pf.role);
+    keep_receptor_contacts(roles, &hand_points);
   }
   std::vector<JointEstimate> joints(obs.parts.size());
   for (int p : moving_parts)
