@@ -1,5 +1,7 @@
 #include "pipeline/articulation/articulation.h"
 
+#include "pipeline/articulation/weighted_fits.h"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
@@ -62,11 +64,6 @@ double rotation_rss_about(const std::vector<Quaterniond>& rotations, const Quate
   return rss;
 }
 
-struct LineFit {
-  Vector3d centre, direction;
-  std::vector<double> t;
-};
-
 ModelFit fit_fixed(const Track& track) {
   ModelFit fit;
   const Vector3d c = mean_of(track.positions);
@@ -99,12 +96,6 @@ ModelFit fit_prismatic(const Track& track, LineFit* line) {
   score(&fit, track.size(), track.has_rotations());
   return fit;
 }
-
-struct HingeFit {
-  Vector3d axis, point;       // the axis line
-  double radius = 0;
-  std::vector<double> theta;  // per sample, the first at 0, unwrapped
-};
 
 // Unwraps angles into a continuous sequence starting at 0.
 std::vector<double> unwrap_from_first(const std::vector<double>& raw) {
@@ -313,9 +304,20 @@ Articulation estimate_articulation_as(const Track& track, const std::string& for
   if (track.size() < 3) return a;
   LineFit line;
   HingeFit hinge;
-  a.fixed = fit_fixed(track);
-  a.prismatic = fit_prismatic(track, &line);
-  a.revolute = track.has_rotations() ? fit_revolute_poses(track, &hinge) : fit_revolute_points(track, &hinge);
+  if (track.has_information()) {
+    // Registered poses: each sample weighted by what its registration saw
+    // (weighted_fits.h), the unweighted hinge one of the starting points.
+    HingeFit from_poses, from_points;
+    fit_revolute_poses(track, &from_poses);
+    fit_revolute_points(track, &from_points);
+    a.fixed = fit_fixed_weighted(track);
+    a.prismatic = fit_prismatic_weighted(track, &line);
+    a.revolute = fit_revolute_weighted(track, {from_poses, from_points}, &hinge);
+  } else {
+    a.fixed = fit_fixed(track);
+    a.prismatic = fit_prismatic(track, &line);
+    a.revolute = track.has_rotations() ? fit_revolute_poses(track, &hinge) : fit_revolute_points(track, &hinge);
+  }
 
   double best = std::numeric_limits<double>::infinity();
   for (const ModelFit* f : {&a.fixed, &a.prismatic, &a.revolute})

@@ -13,6 +13,10 @@
 // themselves. A revolute fit to a straight line needs one more parameter than
 // the line and explains nothing more, so lines stay prismatic.
 //
+// Pose tracks that carry each sample's information matrix (a part's
+// registration in efc infer) are fit and scored with their residuals
+// weighted by it instead (weighted_fits.h).
+//
 // Point tracks (a hand, a handle): the revolute fit is a circle in 3D (the
 // plane by PCA, an algebraic circle refined by Gauss-Newton on the geometric
 // distance). Pose tracks: the axis from the relative rotations, then the
@@ -32,6 +36,7 @@ struct ModelFit {
   bool valid = false;
   double rss_position = 0;  // sum of squared position residuals (m^2)
   double rss_rotation = 0;  // sum of squared rotation residuals (rad^2), pose tracks
+  double rss_weighted = 0;  // tracks with information: sum of r^T W r (weighted_fits.h)
   int parameters = 0;
   double bic = 0;
 };

@@ -28,7 +28,13 @@ bool parse_track_format(const std::string& text, TrackFormat* out);
 struct Track {
   std::vector<Eigen::Vector3d> positions;
   std::vector<Eigen::Quaterniond> rotations;  // empty for xyz tracks
+  // Optional, pose tracks only: per sample, the information matrix (inverse
+  // covariance) of its pose error, rows and columns (rotation vector in the
+  // track's frame, applied on the left; position). A registration knows it
+  // (the ICP's Gauss-Newton Hessian over its noise); a file does not.
+  std::vector<Eigen::Matrix<double, 6, 6>> information;
   bool has_rotations() const { return !rotations.empty(); }
+  bool has_information() const { return has_rotations() && information.size() == positions.size(); }
   size_t size() const { return positions.size(); }
 };
 

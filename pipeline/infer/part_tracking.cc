@@ -81,6 +81,8 @@ void register_frames(const Observations& obs, int part, const std::vector<Eigen:
     out->rmse[f] = r.rmse;
     out->inliers[f] = r.inlier_fraction;
     out->conditioning[f] = r.normalized_eigenvalues(0);
+    out->hessian[f] = r.hessian;
+    out->hessian_center[f] = r.hessian_center;
     if (good) {
       to_model[f] = r.transform;
       before_last_good = last_good;
@@ -152,6 +154,8 @@ PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen:
   out.rmse.assign(n, 0);
   out.inliers.assign(n, 0);
   out.conditioning.assign(n, 0);
+  out.hessian.assign(n, Eigen::Matrix<double, 6, 6>::Zero());
+  out.hessian_center.assign(n, Eigen::Vector3d::Zero());
   out.reference_frame = reference_frame(obs, part, to_object);
   if (out.reference_frame < 0) return out;
 

@@ -28,6 +28,12 @@ struct PartTrack {
   // every direction is constrained; near 0, a motion the shape cannot show,
   // such as a plain cylinder turning on its axis).
   std::vector<double> conditioning;
+  // Per frame: the ICP's Gauss-Newton Hessian (J^T W J over the matched
+  // points, rotation first, about `hessian_center`, model frame) at the end
+  // of the registration. With rmse it says how well each direction of the
+  // frame's pose is known (part_samples() turns it into Track::information).
+  std::vector<Eigen::Matrix<double, 6, 6>> hessian;
+  std::vector<Eigen::Vector3d> hessian_center;
   Cloud model;  // reference configuration, object frame
   int frames_tracked = 0;
   double seconds = 0;
