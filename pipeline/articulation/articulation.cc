@@ -304,19 +304,27 @@ Articulation estimate_articulation_as(const Track& track, const std::string& for
   if (track.size() < 3) return a;
   LineFit line;
   HingeFit hinge;
+  // With the model given, only that one is fitted: its geometry is what is
+  // asked for (the weighted fits are the articulation stage's main cost).
+  const bool want_fixed = forced.empty() || forced == "fixed";
+  const bool want_prismatic = forced.empty() || forced == "prismatic";
+  const bool want_revolute = forced.empty() || forced == "revolute";
   if (track.has_information()) {
     // Registered poses: each sample weighted by what its registration saw
-    // (weighted_fits.h), the unweighted hinge one of the starting points.
-    HingeFit from_poses, from_points;
-    fit_revolute_poses(track, &from_poses);
-    fit_revolute_points(track, &from_points);
-    a.fixed = fit_fixed_weighted(track);
-    a.prismatic = fit_prismatic_weighted(track, &line);
-    a.revolute = fit_revolute_weighted(track, {from_poses, from_points}, &hinge);
+    // (weighted_fits.h), the unweighted hinges among the starting points.
+    if (want_fixed) a.fixed = fit_fixed_weighted(track);
+    if (want_prismatic) a.prismatic = fit_prismatic_weighted(track, &line);
+    if (want_revolute) {
+      HingeFit from_poses, from_points;
+      fit_revolute_poses(track, &from_poses);
+      fit_revolute_points(track, &from_points);
+      a.revolute = fit_revolute_weighted(track, {from_poses, from_points}, &hinge);
+    }
   } else {
-    a.fixed = fit_fixed(track);
-    a.prismatic = fit_prismatic(track, &line);
-    a.revolute = track.has_rotations() ? fit_revolute_poses(track, &hinge) : fit_revolute_points(track, &hinge);
+    if (want_fixed) a.fixed = fit_fixed(track);
+    if (want_prismatic) a.prismatic = fit_prismatic(track, &line);
+    if (want_revolute)
+      a.revolute = track.has_rotations() ? fit_revolute_poses(track, &hinge) : fit_revolute_points(track, &hinge);
   }
 
   double best = std::numeric_limits<double>::infinity();

@@ -64,8 +64,9 @@ constexpr double kRotationFloor = 0.0175;  // rad (1 degree)
 
 Articulation estimate_articulation(const Track& track);
 // The same with the model given ("fixed", "prismatic" or "revolute") rather
-// than chosen: the scores are still every model's (efc infer fuses the
-// scores of several tracks, then asks each for the chosen model's geometry).
+// than chosen: only that model is fitted (the others stay invalid, its
+// probability 1). efc infer types a track on averaged samples, then asks
+// the frame-by-frame track for the chosen model's geometry.
 Articulation estimate_articulation_as(const Track& track, const std::string& type);
 
 // The result as `efc articulate` prints it (shared/spec/cli.md).

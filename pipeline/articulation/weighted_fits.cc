@@ -231,10 +231,10 @@ Vector3d mean_position(const Track& t) {
   return m / static_cast<double>(t.size());
 }
 
-Quaterniond mean_rotation(const Track& t) {
+Quaterniond mean_rotation(const std::vector<Quaterniond>& rotations) {
   Eigen::Vector4d sum = Eigen::Vector4d::Zero();
-  for (const Quaterniond& r : t.rotations)
-    sum += (r.coeffs().dot(t.rotations[0].coeffs()) < 0 ? -1.0 : 1.0) * r.coeffs();
+  for (const Quaterniond& r : rotations)
+    sum += (r.coeffs().dot(rotations[0].coeffs()) < 0 ? -1.0 : 1.0) * r.coeffs();
   Quaterniond m;
   m.coeffs() = sum.normalized();
   return m;
@@ -257,17 +257,20 @@ std::vector<Vec6> residuals_of(const M& m, const Track& t) {
   return out;
 }
 
+// -2 log L of a fit with its scale (the BIC's first term).
+double deviance(double cost, const Weighted& w) {
+  return cost + 12.0 * w.size() * std::log(w.scale);
+}
+
 // The BIC of a fit whose scale was fitted too.
-void finish(ModelFit* fit, double rss_weighted, size_t n, const Weighted& w,
-            const std::vector<Vec6>& residuals) {
+void finish(ModelFit* fit, double rss_weighted, const Weighted& w, const std::vector<Vec6>& residuals) {
   fit->rss_weighted = rss_weighted;
   fit->rss_position = fit->rss_rotation = 0;
   for (const Vec6& e : residuals) {
     fit->rss_rotation += e.head<3>().squaredNorm();
     fit->rss_position += e.tail<3>().squaredNorm();
   }
-  const double n_obs = 6.0 * n;
-  fit->bic = rss_weighted + 2 * n_obs * std::log(w.scale) + fit->parameters * std::log(n_obs);
+  fit->bic = deviance(rss_weighted, w) + fit->parameters * std::log(6.0 * w.size());
   fit->valid = std::isfinite(fit->bic);
 }
 
@@ -282,11 +285,6 @@ double solve_with_scale(M* model, Weighted* w) {
   return weighted_cost(*model, *w);
 }
 
-// -2 log L of a fit with its scale (the BIC's first term).
-double deviance(double cost, const Weighted& w) {
-  return cost + 12.0 * w.size() * std::log(w.scale);
-}
-
 }  // namespace
 
 ModelFit fit_fixed_weighted(const Track& track) {
@@ -294,11 +292,11 @@ ModelFit fit_fixed_weighted(const Track& track) {
   if (!track.has_information() || track.size() < 2) return fit;
   Weighted w(track);
   FixedModel m;
-  m.r0 = mean_rotation(track);
+  m.r0 = mean_rotation(track.rotations);
   m.p0 = mean_position(track);
   const double cost = solve_with_scale(&m, &w);
   fit.parameters = 6;
-  finish(&fit, cost, track.size(), w, residuals_of(m, track));
+  finish(&fit, cost, w, residuals_of(m, track));
   return fit;
 }
 
@@ -313,7 +311,7 @@ ModelFit fit_prismatic_weighted(const Track& track, LineFit* line) {
   Weighted chosen_w = unscaled;
   for (int k = 2; k >= 0; --k) {  // from the direction of most motion
     PrismaticModel m;
-    m.r0 = mean_rotation(track);
+    m.r0 = mean_rotation(track.rotations);
     m.p0 = centre;
     m.a = dirs.col(k);
     for (const Vector3d& p : track.positions) m.t.push_back(m.a.dot(p - centre));
@@ -325,7 +323,7 @@ ModelFit fit_prismatic_weighted(const Track& track, LineFit* line) {
   line->direction = chosen.a;
   line->t = chosen.t;
   fit.parameters = 7 + static_cast<int>(track.size());
-  finish(&fit, best_cost, track.size(), chosen_w, residuals_of(chosen, track));
+  finish(&fit, best_cost, chosen_w, residuals_of(chosen, track));
   return fit;
 }
 
@@ -337,7 +335,7 @@ ModelFit fit_revolute_weighted(const Track& track, const std::vector<HingeFit>& 
   // Starting axes: the unweighted fit's, each principal direction of the
   // rotations (relative to their mean), and the normal of the positions'
   // plane; the axis point the unweighted fit's, else the positions' centre.
-  const Quaterniond mean = mean_rotation(track);
+  const Quaterniond mean = mean_rotation(track.rotations);
   std::vector<Vector3d> w_rel;
   for (const Quaterniond& r : track.rotations) w_rel.push_back(log_map(r * mean.inverse()));
   const Matrix3d rot_dirs = principal_directions(w_rel);
@@ -373,10 +371,7 @@ ModelFit fit_revolute_weighted(const Track& track, const std::vector<HingeFit>& 
       m.q += m.o + undo * (track.positions[i] - m.o);
     }
     m.q /= static_cast<double>(n);
-    Track turned_back;
-    turned_back.positions = track.positions;
-    turned_back.rotations = back;
-    m.r0 = mean_rotation(turned_back);
+    m.r0 = mean_rotation(back);
     Weighted w = unscaled;
     const double cost = solve_with_scale(&m, &w);
     if (deviance(cost, w) < best) best = deviance(cost, w), best_cost = cost, chosen = m, chosen_w = w;
@@ -388,7 +383,7 @@ ModelFit fit_revolute_weighted(const Track& track, const std::vector<HingeFit>& 
   hinge->theta.clear();
   for (double t : chosen.theta) hinge->theta.push_back(t - theta0);
   fit.parameters = 10 + static_cast<int>(n);
-  finish(&fit, best_cost, n, chosen_w, residuals_of(chosen, track));
+  finish(&fit, best_cost, chosen_w, residuals_of(chosen, track));
   return fit;
 }
 
