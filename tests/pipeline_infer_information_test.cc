@@ -7,6 +7,9 @@
 // sign, the centre) puts the free direction elsewhere.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
 #include <cmath>
 
 #include "pipeline/cloud/icp.h"
@@ -103,6 +106,64 @@ TEST(PipelineInferInformation, AKnobsSpinIsFreeAndItsSlideIsNot) {
   pure << moved_axis, Vector3d::Zero();
   EXPECT_LT(turn.dot(W_off * turn), 1e-6 * slide * turn.squaredNorm());
   EXPECT_GT(pure.dot(W_off * pure), 1e3 * turn.dot(W_off * turn));
+}
+
+// A knob with a small pointer ridge: its spin is nearly free (the ridge's
+// few points hold it), below the tracker's threshold, so the tracker never
+// moves along it and the pose there is only the registration's start.
+// drop_unconstrained gives the spin no information at all; the slide keeps
+// all of its own.
+TEST(PipelineInferInformation, TheSpinTheTrackerLeftAloneGetsNoInformation) {
+  const Vector3d centre(0.1, 0.2, 0.5), axis(0, -1, 0);
+  Cloud model = cylinder(centre, axis, 0.025, 0.02);
+  // The ridge: a 4 mm x 2 mm x 12 mm bar on the front cap, off the axis.
+  const Vector3d front = centre + axis * 0.01;
+  for (int i = 0; i < 6; ++i)
+    for (int side : {-1, 1}) {
+      model.points.push_back(front + axis * 0.002 + Vector3d(side * 0.002, 0, 0.004 + 0.002 * i));
+      model.normals.push_back(Vector3d(side, 0, 0));
+    }
+  Cloud frame = model;
+  Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+  motion.translation() = Vector3d(0.004, -0.003, 0.002);
+  transform_cloud(motion, &frame);
+  const KdTree tree(model.points);
+  IcpOptions options;
+  options.degenerate_threshold = kTrackDegenerateThreshold;
+  const IcpResult r = icp_point_to_plane(frame, model, tree, motion.inverse(), options);
+  ASSERT_TRUE(r.converged);
+  // The premise: the spin is held, but only weakly.
+  ASSERT_GT(r.normalized_eigenvalues(0), 1e-5);
+  ASSERT_LT(r.normalized_eigenvalues(0), kTrackDegenerateThreshold);
+  ASSERT_GE(r.normalized_eigenvalues(1), kTrackDegenerateThreshold);
+
+  PartTrack track;
+  track.reference_frame = 0;
+  track.model = model;
+  track.motion = {r.transform.inverse()};
+  track.tracked = {true};
+  track.rmse = {std::max(r.rmse, 1e-4)};
+  track.inliers = {r.inlier_fraction};
+  track.conditioning = {r.normalized_eigenvalues(0)};
+  track.hessian = {r.hessian};
+  track.hessian_center = {r.hessian_center};
+  track.hessian_scale = {r.scale_length};
+  std::vector<std::vector<int>> frames;
+  const Eigen::Matrix<double, 6, 6> kept = part_samples(track, centroid(model), 1, &frames, false).information[0];
+  const Eigen::Matrix<double, 6, 6> dropped = part_samples(track, centroid(model), 1, &frames, true).information[0];
+  // Dropping takes one direction away: the knob's spin (its rotation part
+  // along the axis), which the ridge held a little.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(dropped);
+  const Vec6 free = eig.eigenvectors().col(0);
+  EXPECT_GT(std::abs(free.head<3>().normalized().dot(axis)), 0.99);
+  EXPECT_LT(free.dot(dropped * free), 1e-9 * eig.eigenvalues()(1));
+  EXPECT_GT(free.dot(kept * free), 1e3 * std::max(free.dot(dropped * free), 1e-12));
+  Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> removed(kept - dropped);
+  removed.setThreshold(1e-9);
+  EXPECT_EQ(removed.rank(), 1);
+  Vec6 slide;
+  slide << Vector3d::Zero(), axis;
+  EXPECT_NEAR(slide.dot(dropped * slide), slide.dot(kept * slide), 1e-6 * slide.dot(kept * slide));
 }
 
 }  // namespace

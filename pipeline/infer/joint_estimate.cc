@@ -1,5 +1,7 @@
 #include "pipeline/infer/joint_estimate.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -158,9 +160,34 @@ std::vector<bool> pose_spikes(const std::vector<Eigen::Vector3d>& rot, const std
 // rmse^2 H^-1; the part's motion is T^-1, so the sample's rotation moves by
 // -R w and the centroid c by R ([c - h]x w - v). Information transforms by
 // the inverse of that map: A^-T (H / rmse^2) A^-1.
-Eigen::Matrix<double, 6, 6> sample_information(const PartTrack& track, int f, const Eigen::Vector3d& centroid) {
+//
+// `drop_unconstrained`: the directions the tracker's ICP left alone
+// (normalised eigenvalue below kTrackDegenerateThreshold) get no
+// information at all: the pose along them is only where the registration
+// started, carried over from the neighbouring frame, not a measurement.
+Eigen::Matrix<double, 6, 6> sample_information(const PartTrack& track, int f, const Eigen::Vector3d& centroid,
+                                               bool drop_unconstrained) {
   using Mat6 = Eigen::Matrix<double, 6, 6>;
   if (f >= static_cast<int>(track.hessian.size())) return Mat6::Zero();
+  Mat6 H = track.hessian[f];
+  if (drop_unconstrained && f < static_cast<int>(track.hessian_scale.size()) && track.hessian_scale[f] > 0) {
+    // The ICP's normalised system: rotations as arc length at L, over the
+    // weight sum (the translation block's trace: unit normals).
+    const double L = track.hessian_scale[f];
+    const double weight_sum = H.block<3, 3>(3, 3).trace();
+    if (weight_sum > 0) {
+      Eigen::Matrix<double, 6, 1> d;
+      d << 1 / L, 1 / L, 1 / L, 1, 1, 1;
+      const Mat6 scaled = d.asDiagonal() * H * d.asDiagonal() / weight_sum;
+      const Eigen::SelfAdjointEigenSolver<Mat6> eig(scaled);
+      Mat6 kept = Mat6::Zero();
+      for (int k = 0; k < 6; ++k)
+        if (eig.eigenvalues()(k) >= kTrackDegenerateThreshold)
+          kept += eig.eigenvalues()(k) * eig.eigenvectors().col(k) * eig.eigenvectors().col(k).transpose();
+      const Eigen::Matrix<double, 6, 1> d_inv = d.cwiseInverse();
+      H = weight_sum * d_inv.asDiagonal() * kept * d_inv.asDiagonal();
+    }
+  }
   const Eigen::Matrix3d R = track.motion[f].linear();
   const Eigen::Vector3d d = centroid - track.hessian_center[f];
   Eigen::Matrix3d cross;
@@ -176,14 +203,14 @@ Eigen::Matrix<double, 6, 6> sample_information(const PartTrack& track, int f, co
   // along its edges counts as weakly known: on the 60-sequence suite, type
   // accuracy 53.8 -> 49.5 %, more moving parts called fixed.)
   const double sigma = std::max(f < static_cast<int>(track.rmse.size()) ? track.rmse[f] : 0.0, 1e-4);
-  const Mat6 info = A_inv.transpose() * track.hessian[f] * A_inv / (sigma * sigma);
+  const Mat6 info = A_inv.transpose() * H * A_inv / (sigma * sigma);
   return 0.5 * (info + info.transpose());
 }
 
 }  // namespace
 
 Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int bin_frames,
-                   std::vector<std::vector<int>>* frames_of_sample) {
+                   std::vector<std::vector<int>>* frames_of_sample, bool drop_unconstrained) {
   const int n = static_cast<int>(track.motion.size());
   std::vector<int> frames;
   std::vector<Eigen::Vector3d> rot, pos;
@@ -225,7 +252,7 @@ Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int 
     if (!bin.empty() && c.dot(sum_q) < 0) c = -c;
     sum_q += c;
     sum_p += pos[i];
-    if (informed) sum_info += sample_information(track, f, centroid);
+    if (informed) sum_info += sample_information(track, f, centroid, drop_unconstrained);
     bin.push_back(f);
     last = f;
   }
@@ -279,9 +306,15 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // of a small lever's press outweigh the registration noise. The geometry
   // and the per-frame positions then come from the frames one by one (an
   // average blurs where a motion starts and where it peaks).
+  // The typing pass gives no weight to the directions the tracker left
+  // alone in a frame (a round button's spin: the pose there is the start's,
+  // carried from frame to frame, and drifts); the geometry pass keeps them,
+  // since a drawer whose slide shows only on its small front face has its
+  // slide there in every single frame, and summed over the track it is what
+  // fixes the axis.
   const Eigen::Vector3d model_centre = centroid(track.model);
   std::vector<std::vector<int>> part_frames;
-  const Track part = part_samples(track, model_centre, kPartBin, &part_frames);
+  const Track part = part_samples(track, model_centre, kPartBin, &part_frames, true);
   // The hand's track, averaged over runs of up to kHandBin consecutive
   // contact frames: a hand detector's error (~1 cm) is far larger than a
   // knob's or a lever's motion in one frame, while a joint moves little in a

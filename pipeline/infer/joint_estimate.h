@@ -57,9 +57,11 @@ Eigen::Isometry3d joint_motion(const JointEstimate& joint, double q);
 // `centroid` (a point of the model) in each tracked frame, frames whose pose
 // jumps away from their neighbours' dropped as ICP failures, then averaged
 // over runs of up to `bin_frames` consecutive frames (1: none).
-// frames_of_sample[k] lists the frames averaged into sample k.
+// frames_of_sample[k] lists the frames averaged into sample k. Each sample
+// carries its information (Track::information) from the registrations' Hessians;
+// `drop_unconstrained` gives none to the directions the tracker left alone.
 Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int bin_frames,
-                   std::vector<std::vector<int>>* frames_of_sample);
+                   std::vector<std::vector<int>>* frames_of_sample, bool drop_unconstrained = false);
 
 // hand_points[f]: the hand's contact point in the object frame in the frames
 // it holds this part (NaN elsewhere).

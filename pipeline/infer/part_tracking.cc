@@ -38,7 +38,7 @@ void register_frames(const Observations& obs, int part, const std::vector<Eigen:
   fine.kernel_scale = 0.004;
   fine.max_iterations = 25;
   fine.subsample = 600;
-  fine.degenerate_threshold = 0.05;  // noise along a near-symmetry is not motion
+  fine.degenerate_threshold = kTrackDegenerateThreshold;
   fine.min_normal_dot = 0.5;         // no flipped matches
   IcpOptions coarse = fine;
   coarse.max_correspondence = 0.05;
@@ -83,6 +83,7 @@ void register_frames(const Observations& obs, int part, const std::vector<Eigen:
     out->conditioning[f] = r.normalized_eigenvalues(0);
     out->hessian[f] = r.hessian;
     out->hessian_center[f] = r.hessian_center;
+    out->hessian_scale[f] = r.scale_length;
     if (good) {
       to_model[f] = r.transform;
       before_last_good = last_good;
@@ -156,6 +157,7 @@ PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen:
   out.conditioning.assign(n, 0);
   out.hessian.assign(n, Eigen::Matrix<double, 6, 6>::Zero());
   out.hessian_center.assign(n, Eigen::Vector3d::Zero());
+  out.hessian_scale.assign(n, 0.0);
   out.reference_frame = reference_frame(obs, part, to_object);
   if (out.reference_frame < 0) return out;
 

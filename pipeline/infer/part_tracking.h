@@ -16,6 +16,11 @@
 
 namespace efc::pipeline {
 
+// Directions whose normalised ICP eigenvalue (IcpResult) is below this are
+// left alone by the tracker: noise along a near-symmetry (a round knob's
+// spin) is not motion, and the pose there is only the registration's start.
+constexpr double kTrackDegenerateThreshold = 0.05;
+
 struct PartTrack {
   int part = -1;             // index in Observations::parts
   int reference_frame = -1;  // the model's configuration is this frame's
@@ -34,6 +39,10 @@ struct PartTrack {
   // frame's pose is known (part_samples() turns it into Track::information).
   std::vector<Eigen::Matrix<double, 6, 6>> hessian;
   std::vector<Eigen::Vector3d> hessian_center;
+  // The ICP's length scale (IcpResult::scale_length) per frame: with it the
+  // Hessian's normalised eigenvalues, which say which directions the
+  // registration left alone, can be recomputed.
+  std::vector<double> hessian_scale;
   Cloud model;  // reference configuration, object frame
   int frames_tracked = 0;
   double seconds = 0;
