@@ -67,6 +67,11 @@ ojson joint_report(const JointEstimate& j) {
     r["axis"] = vec(j.axis);
     r["origin"] = vec(j.origin);
     r["range"] = ojson::array({j.range_lo, j.range_hi});
+    // The joint position per frame (the receptor's s_R for the templates);
+    // null before the part was first seen.
+    ojson q = ojson::array();
+    for (double v : j.q) q.push_back(std::isfinite(v) ? ojson(v) : ojson(nullptr));
+    r["q"] = q;
   }
   auto fits = [](const Articulation& a) {
     ojson f;
