@@ -11,12 +11,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "sequence/sequence.h"
 #include "tests/efc_cli.h"
+#include "tests/truth_csv.h"
 
 namespace {
 
@@ -68,22 +68,8 @@ TEST(InferCli, SyntheticDrawerToSpecThatCompilesAndPlays) {
   // The drawer's position per frame (parts[].joint.q) follows the truth's
   // (truth/joints.csv, one row per frame), both from where it was first seen.
   {
-    std::vector<double> truth_q;
-    std::ifstream csv(dir / "seq/truth/joints.csv");
-    std::string line;
-    std::getline(csv, line);
-    const std::string header = line;
-    size_t column = 0;
-    for (size_t at = 0, c = 0; at != std::string::npos; at = header.find(',', at + 1), ++c)
-      if (header.compare(at == 0 ? 0 : at + 1, 6, "drawer") == 0) column = c;
-    ASSERT_GT(column, 0u) << header;
-    while (std::getline(csv, line)) {
-      std::stringstream cells(line);
-      std::string cell;
-      for (size_t c = 0; c <= column && std::getline(cells, cell, ','); ++c) {
-      }
-      truth_q.push_back(std::stod(cell));
-    }
+    const std::vector<double> truth_q = efc::test::read_joints_csv((dir / "seq/truth/joints.csv").string())["drawer"];
+    ASSERT_FALSE(truth_q.empty());
     bool found = false;
     for (const json& p : report["parts"]) {
       if (p["name"] != "drawer") continue;

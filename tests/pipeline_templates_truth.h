@@ -16,6 +16,7 @@
 #include "compiler/core/load.h"
 #include "pipeline/templates/template_input.h"
 #include "sequence/sequence.h"
+#include "tests/truth_csv.h"
 
 namespace efc::test {
 
@@ -24,23 +25,6 @@ struct TruthInput {
   pipeline::TemplateInput input;
   std::optional<Object> spec;
 };
-
-inline std::map<std::string, std::vector<double>> read_joints_csv(const std::string& path) {
-  std::map<std::string, std::vector<double>> cols;
-  std::ifstream in(path);
-  std::string line;
-  std::vector<std::string> header;
-  if (!std::getline(in, line)) return cols;
-  std::stringstream hs(line);
-  for (std::string cell; std::getline(hs, cell, ',');) header.push_back(cell);
-  while (std::getline(in, line)) {
-    std::stringstream ls(line);
-    size_t i = 0;
-    for (std::string cell; std::getline(ls, cell, ','); ++i)
-      if (i < header.size()) cols[header[i]].push_back(std::strtod(cell.c_str(), nullptr));  // stod throws on denormals
-  }
-  return cols;
-}
 
 inline Eigen::Isometry3d joint_motion(const Joint& j, double q) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

@@ -191,4 +191,21 @@ IcpResult icp_point_to_plane(const Cloud& source, const Cloud& target, const KdT
   return res;
 }
 
+Eigen::Matrix<double, 6, 6> hessian_without_unconstrained(const Eigen::Matrix<double, 6, 6>& hessian,
+                                                          double scale_length, double threshold) {
+  using Mat6 = Eigen::Matrix<double, 6, 6>;
+  // The weight sum is the translation block's trace (unit normals).
+  const double weight_sum = hessian.block<3, 3>(3, 3).trace();
+  if (!(scale_length > 0) || !(weight_sum > 0)) return hessian;
+  Eigen::Matrix<double, 6, 1> d;
+  d << 1 / scale_length, 1 / scale_length, 1 / scale_length, 1, 1, 1;
+  const Eigen::SelfAdjointEigenSolver<Mat6> eig(d.asDiagonal() * hessian * d.asDiagonal() / weight_sum);
+  Mat6 kept = Mat6::Zero();
+  for (int k = 0; k < 6; ++k)
+    if (eig.eigenvalues()(k) >= threshold)
+      kept += eig.eigenvalues()(k) * eig.eigenvectors().col(k) * eig.eigenvectors().col(k).transpose();
+  const Eigen::Matrix<double, 6, 1> d_inv = d.cwiseInverse();
+  return weight_sum * d_inv.asDiagonal() * kept * d_inv.asDiagonal();
+}
+
 }  // namespace efc::pipeline

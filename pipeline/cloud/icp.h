@@ -80,4 +80,12 @@ struct IcpResult {
 IcpResult icp_point_to_plane(const Cloud& source, const Cloud& target, const KdTree& target_tree,
                              const Eigen::Isometry3d& initial, const IcpOptions& options);
 
+// An IcpResult's `hessian` without the directions the solver leaves alone:
+// those whose normalized eigenvalue (the Hessian with rotations as arc
+// length at `scale_length`, over the weight sum, as in IcpResult) is below
+// `threshold` get no information; the others keep theirs. Returns `hessian`
+// unchanged when scale_length or the weight sum is not positive.
+Eigen::Matrix<double, 6, 6> hessian_without_unconstrained(const Eigen::Matrix<double, 6, 6>& hessian,
+                                                          double scale_length, double threshold);
+
 }  // namespace efc::pipeline

@@ -1,10 +1,10 @@
 #include "pipeline/infer/joint_estimate.h"
 
-#include <Eigen/Eigenvalues>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "pipeline/cloud/icp.h"
 
 namespace efc::pipeline {
 
@@ -169,25 +169,10 @@ Eigen::Matrix<double, 6, 6> sample_information(const PartTrack& track, int f, co
                                                bool drop_unconstrained) {
   using Mat6 = Eigen::Matrix<double, 6, 6>;
   if (f >= static_cast<int>(track.hessian.size())) return Mat6::Zero();
-  Mat6 H = track.hessian[f];
-  if (drop_unconstrained && f < static_cast<int>(track.hessian_scale.size()) && track.hessian_scale[f] > 0) {
-    // The ICP's normalised system: rotations as arc length at L, over the
-    // weight sum (the translation block's trace: unit normals).
-    const double L = track.hessian_scale[f];
-    const double weight_sum = H.block<3, 3>(3, 3).trace();
-    if (weight_sum > 0) {
-      Eigen::Matrix<double, 6, 1> d;
-      d << 1 / L, 1 / L, 1 / L, 1, 1, 1;
-      const Mat6 scaled = d.asDiagonal() * H * d.asDiagonal() / weight_sum;
-      const Eigen::SelfAdjointEigenSolver<Mat6> eig(scaled);
-      Mat6 kept = Mat6::Zero();
-      for (int k = 0; k < 6; ++k)
-        if (eig.eigenvalues()(k) >= kTrackDegenerateThreshold)
-          kept += eig.eigenvalues()(k) * eig.eigenvectors().col(k) * eig.eigenvectors().col(k).transpose();
-      const Eigen::Matrix<double, 6, 1> d_inv = d.cwiseInverse();
-      H = weight_sum * d_inv.asDiagonal() * kept * d_inv.asDiagonal();
-    }
-  }
+  const bool has_scale = f < static_cast<int>(track.hessian_scale.size());
+  const Mat6 H = drop_unconstrained && has_scale
+                     ? hessian_without_unconstrained(track.hessian[f], track.hessian_scale[f], kTrackDegenerateThreshold)
+                     : track.hessian[f];
   const Eigen::Matrix3d R = track.motion[f].linear();
   const Eigen::Vector3d d = centroid - track.hessian_center[f];
   Eigen::Matrix3d cross;
