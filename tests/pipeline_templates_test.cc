@@ -4,6 +4,7 @@
 // local fake server (tests/pipeline_templates_fake_vlm.py).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -393,6 +394,52 @@ TEST(TemplatesFit, TwoFunctionsOnOnePartSetDifferentEffects) {
   ASSERT_EQ(got.size(), 2u);
   EXPECT_EQ(got[0].effect["type"], "geometry");  // the ram's joint answers for the first
   EXPECT_NE(got[1].effect["type"], got[0].effect["type"]);
+}
+
+TEST(TemplatesFit, TheReceptorStateTheEffectorFollowsIsKept) {
+  // A receptor's state may come from its own track or from the hand's grip
+  // (a round knob's track can be its tracker's drift): the templates keep
+  // the one an effect follows. The truth in one place and an unrelated
+  // wobble in the other, both ways round.
+  efc::test::TruthInput t;
+  std::string why;
+  ASSERT_TRUE(efc::test::load_truth_input(kCumulativeGeometry, &t, &why)) << why;
+  ASSERT_EQ(t.input.functions.size(), 1u);
+  int r = -1;
+  for (size_t i = 0; i < t.input.parts.size(); ++i)
+    if (t.input.parts[i].name == t.input.functions[0].receptor) r = static_cast<int>(i);
+  ASSERT_GE(r, 0);
+  efc::pipeline::PartObservation& rec = t.input.parts[r];
+  const std::vector<double> truth = rec.q;
+  ASSERT_FALSE(truth.empty());
+  const auto [lo, hi] = std::minmax_element(truth.begin(), truth.end());
+  ASSERT_GT(*hi - *lo, 0);
+  std::vector<double> wobble(truth.size());
+  for (size_t i = 0; i < wobble.size(); ++i) wobble[i] = *lo + 0.5 * (*hi - *lo) * (1 + std::sin(0.7 * i + 1.0));
+
+  efc::Diagnostics diags;
+  const auto reference = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  ASSERT_EQ(reference.size(), 1u);
+  EXPECT_EQ(reference[0].report["s_R"]["source"], "part");
+  EXPECT_TRUE(reference[0].report["s_R"]["evidence_hand"].is_null());  // no hand's state given
+
+  rec.q = wobble;
+  rec.q_hand = truth;
+  const auto from_hand = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  ASSERT_EQ(from_hand.size(), 1u);
+  EXPECT_EQ(from_hand[0].report["s_R"]["source"], "hand");
+  EXPECT_EQ(from_hand[0].effect["type"], reference[0].effect["type"]);
+  EXPECT_EQ(from_hand[0].mapping["type"], reference[0].mapping["type"]);
+
+  rec.q = truth;
+  rec.q_hand = wobble;
+  const auto from_part = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  ASSERT_EQ(from_part.size(), 1u);
+  EXPECT_EQ(from_part[0].report["s_R"]["source"], "part");
+  EXPECT_GT(from_part[0].report["s_R"]["evidence_part"].get<double>(),
+            from_part[0].report["s_R"]["evidence_hand"].get<double>());
+  EXPECT_EQ(from_part[0].effect["type"], reference[0].effect["type"]);
+  EXPECT_EQ(from_part[0].mapping["type"], reference[0].mapping["type"]);
 }
 
 TEST(TemplatesVlm, ParsesRepliesAndRejectsGarbage) {

@@ -72,6 +72,12 @@ ojson joint_report(const JointEstimate& j) {
     ojson q = ojson::array();
     for (double v : j.q) q.push_back(std::isfinite(v) ? ojson(v) : ojson(nullptr));
     r["q"] = q;
+    if (!j.q_hand.empty()) {
+      // The same from the hand's contacts alone, for comparison.
+      ojson qh = ojson::array();
+      for (double v : j.q_hand) qh.push_back(std::isfinite(v) ? ojson(v) : ojson(nullptr));
+      r["q_hand"] = qh;
+    }
   }
   auto fits = [](const Articulation& a) {
     ojson f;
@@ -297,6 +303,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     po.motion.assign(n, Eigen::Isometry3d::Identity());
     if (po.joint_type != "fixed") {
       po.q = a.joint.q;
+      if (a.joint.source == "part") po.q_hand = a.joint.q_hand;
       for (int f = 0; f < n && f < static_cast<int>(po.q.size()); ++f) po.motion[f] = joint_motion(a.joint, po.q[f]);
     }
     po.bounds = recon[p].bounds;

@@ -396,6 +396,11 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     for (int f : hand_frames) h[f] = hand_points[f];
     q = smoothed(q_from_hand(j, h), 4);
   }
+  if (j.has_hand_track) {
+    std::vector<Eigen::Vector3d> h(n, Eigen::Vector3d::Constant(kNaN));
+    for (int f : hand_frames) h[f] = hand_points[f];
+    j.q_hand = smoothed(q_from_hand(j, h), 4);
+  }
   // q = 0 where the part was first seen; the model's reference frame maps
   // there by the joint itself.
   double q_first = kNaN;

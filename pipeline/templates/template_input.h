@@ -44,6 +44,11 @@ struct PartObservation {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ(), origin = Eigen::Vector3d::Zero();  // object frame
   double range_lo = 0, range_hi = 0;            // joint range (rad or m); 0,0 for fixed
   std::vector<double> q;                        // joint position per frame (NaN = unknown); empty for fixed
+  // The same joint's position from the hand's contacts alone, where q came
+  // from the part's own track (empty otherwise). A round knob's or a small
+  // button's track may not show its motion while the hand's grip does: the
+  // templates try both as s_R and keep the one the effector follows.
+  std::vector<double> q_hand;
   std::vector<Eigen::Isometry3d> motion;        // per frame: the part's pose in the object frame relative to q = 0 (identity for fixed)
   Eigen::AlignedBox3d bounds;                   // object frame, at q = 0
   std::vector<Eigen::Vector3d> surface;         // fused surface points, object frame, at q = 0 (may be empty)

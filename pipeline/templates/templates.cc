@@ -156,11 +156,15 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     double r_lo, r_hi;
     receptor_range(rec, &r_lo, &r_hi);
 
-    // ---- s_R
+    // ---- s_R: the receptor's joint position, from its own track, and
+    // (where the track was the part's) from the hand's contacts too
     std::vector<double> s_R = rec.q;
     s_R.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
     const double moved = spread(s_R);
-    if (ri < 0 || !movable(rec) || moved < 1e-3 * (r_hi - r_lo))
+    std::vector<double> s_R_hand = rec.q_hand;
+    s_R_hand.resize(s_R_hand.empty() ? 0 : meta.frames, std::numeric_limits<double>::quiet_NaN());
+    const bool hand_moved = !s_R_hand.empty() && spread(s_R_hand) >= 1e-3 * (r_hi - r_lo);
+    if (ri < 0 || !movable(rec) || (moved < 1e-3 * (r_hi - r_lo) && !hand_moved))
       diags.warning("E1060", seq_file, 0, 0, where,
                     "function '" + F.name + "': the receptor '" + F.receptor +
                         (ri < 0 ? "' is not among the parts" : !movable(rec) ? "' has no movable joint" : "' never moves") +
@@ -177,59 +181,80 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
                     "the effect is judged from its joint and surroundings only");
 
     const std::vector<double> prior = mapping_prior(rec.joint_type == "continuous");
-    std::vector<Hypothesis> H(5);
-    for (int k = 0; k < 5; ++k) {
-      std::vector<double> y;
-      MappingSeries S;
-      S.dt = dt;
-      S.r_lo = r_lo;
-      S.r_hi = r_hi;
-      S.s_R = s_R;
-      S.allow_lag = false;
-      if (k == 0) {
-        if (!eff || !movable(*eff) || eff->q.empty()) continue;
-        y = eff->q;
-        S.allow_lag = true;  // a driven joint follows its target
-        S.max_lag_order = 2;
-        S.noise_floor = 1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3);
-      } else {
-        if (!sig) continue;
-        y = k == 1 ? median3(sig->glow) : k == 2 ? median3(sig->heat) : binned_root(k == 3 ? sig->droplets : sig->motes);
-        if (k == 3) S.allow_lag = true;  // droplets in flight outlast the flow, and take time to fall into view
-        if (k == 2) {
-          S.allow_lag = true;            // temperature lags its target
-          S.lag_starts_anywhere = true;  // from e_lo, whatever the target at rest
-          S.b_sign = 1;                  // switched on, a part reddens (a cooler shows nothing)
-          S.require_lag = true;          // with thermal inertia (a lamp's tint is instant)
+    // Every effect's signal fitted against one s_R.
+    auto fit_hypotheses = [&](const std::vector<double>& s) {
+      std::vector<Hypothesis> H(5);
+      for (int k = 0; k < 5; ++k) {
+        std::vector<double> y;
+        MappingSeries S;
+        S.dt = dt;
+        S.r_lo = r_lo;
+        S.r_hi = r_hi;
+        S.s_R = s;
+        S.allow_lag = false;
+        if (k == 0) {
+          if (!eff || !movable(*eff) || eff->q.empty()) continue;
+          y = eff->q;
+          S.allow_lag = true;  // a driven joint follows its target
+          S.max_lag_order = 2;
+          S.noise_floor = 1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3);
+        } else {
+          if (!sig) continue;
+          y = k == 1 ? median3(sig->glow) : k == 2 ? median3(sig->heat) : binned_root(k == 3 ? sig->droplets : sig->motes);
+          if (k == 3) S.allow_lag = true;  // droplets in flight outlast the flow, and take time to fall into view
+          if (k == 2) {
+            S.allow_lag = true;            // temperature lags its target
+            S.lag_starts_anywhere = true;  // from e_lo, whatever the target at rest
+            S.b_sign = 1;                  // switched on, a part reddens (a cooler shows nothing)
+            S.require_lag = true;          // with thermal inertia (a lamp's tint is instant)
+          }
+          // Floors: a grey level (luminance), a thousandth of chromaticity,
+          // a millimetre (blobs: sqrt of m^2).
+          S.noise_floor = k == 1 ? 0.5 / 255 : k == 2 ? 1e-3 : 1e-3;
         }
-        // Floors: a grey level for the colour signals, a square millimetre for blobs.
-        // Floors: a grey level (luminance), a thousandth of chromaticity,
-        // a millimetre (blobs: sqrt of m^2).
-        S.noise_floor = k == 1 ? 0.5 / 255 : k == 2 ? 1e-3 : 1e-3;
+        y.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
+        S.y = y;
+        Hypothesis& h = H[k];
+        h.has_signal = true;
+        h.signal = summary(y);
+        h.fit = fit_mappings(S, prior);
+        h.evidence = h.fit.best_index >= 0 ? std::max(0.0, h.fit.delta_bic) : 0;
+        if (k == 1 && sig) {
+          // A lamp shows on its bulb or on what it lights: the better of the
+          // two signals (a bulb under a hood or inside a cabinet is hidden).
+          MappingSeries A = S;
+          A.y = sig->surround;
+          A.y.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
+          const MappingFitResult around = fit_mappings(A, prior);
+          const double ev = around.best_index >= 0 ? std::max(0.0, around.delta_bic) : 0;
+          h.signal["around"] = summary(A.y);
+          h.signal["around_evidence"] = ev;
+          if (ev > h.evidence) h.fit = around, h.evidence = ev;
+        }
+        if (h.fit.best_index >= 0) {
+          h.mapping_post.assign(4, 0.0);
+          for (int i = 0; i < 5; ++i) h.mapping_post[kTypeOf[i]] += h.fit.posterior[i];
+        }
       }
-      y.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
-      S.y = y;
-      Hypothesis& h = H[k];
-      h.has_signal = true;
-      h.signal = summary(y);
-      h.fit = fit_mappings(S, prior);
-      h.evidence = h.fit.best_index >= 0 ? std::max(0.0, h.fit.delta_bic) : 0;
-      if (k == 1 && sig) {
-        // A lamp shows on its bulb or on what it lights: the better of the
-        // two signals (a bulb under a hood or inside a cabinet is hidden).
-        MappingSeries A = S;
-        A.y = sig->surround;
-        A.y.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
-        const MappingFitResult around = fit_mappings(A, prior);
-        const double ev = around.best_index >= 0 ? std::max(0.0, around.delta_bic) : 0;
-        h.signal["around"] = summary(A.y);
-        h.signal["around_evidence"] = ev;
-        if (ev > h.evidence) h.fit = around, h.evidence = ev;
-      }
-      if (h.fit.best_index >= 0) {
-        h.mapping_post.assign(4, 0.0);
-        for (int i = 0; i < 5; ++i) h.mapping_post[kTypeOf[i]] += h.fit.posterior[i];
-      }
+      return H;
+    };
+    auto strongest = [](const std::vector<Hypothesis>& H) {
+      double best = 0;
+      for (const Hypothesis& h : H) best = std::max(best, h.evidence);
+      return best;
+    };
+    std::vector<Hypothesis> H = fit_hypotheses(s_R);
+    // The hand's s_R where it moved: kept when some effect follows it
+    // evidently (kMinEvidence) and more strongly than any follows the
+    // part's (the same criterion as between effects; the part's track of a
+    // round knob may be its tracker's drift). When nothing follows either,
+    // the part's stays.
+    std::string s_R_source = "part";
+    double evidence_part = strongest(H), evidence_hand = 0;
+    if (hand_moved) {
+      std::vector<Hypothesis> H_hand = fit_hypotheses(s_R_hand);
+      evidence_hand = strongest(H_hand);
+      if (evidence_hand >= kMinEvidence && evidence_hand > evidence_part) H = std::move(H_hand), s_R = s_R_hand, s_R_source = "hand";
     }
 
     // ---- the effect: the signal the receptor explains best
@@ -383,6 +408,8 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
                 {"chosen_model", to_json(model)},
                 {"estimates", tj.notes},
                 {"receptor_range", {r_lo, r_hi}},
+                {"s_R", {{"source", s_R_source}, {"evidence_part", evidence_part},
+                         {"evidence_hand", hand_moved ? nlohmann::json(evidence_hand) : nlohmann::json(nullptr)}}},
                 {"measure_seconds_all_functions", measure_s},
                 {"fit_seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - tf).count()}};
     if (!vlm_report.is_null()) R.report["vlm"] = vlm_report;
