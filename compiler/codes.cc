@@ -486,6 +486,14 @@ const std::vector<CodeInfo>& all_codes() {
        "A part needs depth readings inside its mask in several frames to get a\n"
        "surface and a closed mesh; this one did not, so it is left out.\n"
        "Fix: check the part's masks and depth, or film it from closer."},
+      {"E1059", "a held part's motion is not seen: its joint is assumed",
+       "efc infer types each part's joint by what its own track and the hand's contacts\n"
+       "show. The hand held this part (a receptor), yet neither shows it moving: a button\n"
+       "pressed under the finger, a knob turned by its centre. The recording is of\n"
+       "someone operating it, so it takes the likelier moving joint (revolute or\n"
+       "prismatic, by BIC) with low confidence (report.json: assumed_moving). A part no\n"
+       "hand held stays fixed when nothing shows it moving.\n"
+       "Fix: film the part from where its motion shows, not hidden by the hand."},
       {"E1010", "the spec cannot be filmed by efc synth",
        "efc synth writes one mask folder per part and one for the hand (masks/hand/),\n"
        "so a part named 'hand' would share the hand's folder.\n"

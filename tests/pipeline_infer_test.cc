@@ -136,6 +136,27 @@ TEST(PipelineInfer, TheHandGivesTheJointTheShapeCannotShow) {
   EXPECT_EQ(estimate_joint(t, no_hand(frames)).type, "fixed");
 }
 
+TEST(PipelineInfer, AReceptorTheHandHeldMovedEvenWhenNothingShowsIt) {
+  // The round knob again, held at its centre (the hand's point barely
+  // moves as it turns): neither track shows a motion. The hand held it, so
+  // it was operated: a moving joint, flagged as assumed, low confidence.
+  const int frames = 120;
+  const PartTrack t = turning(ring(0.03, 0.02), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0005, 4);
+  std::vector<Vector3d> hand = no_hand(frames);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g(0, 0.003);
+  for (int f = 20; f < 100; ++f) hand[f] = Vector3d(0, 0, 0.02) + Vector3d(g(rng), g(rng), g(rng));
+  const JointEstimate held = estimate_joint(t, hand);
+  EXPECT_TRUE(held.assumed_moving);
+  EXPECT_NE(held.type, "fixed");
+  EXPECT_LE(held.confidence, 0.5);
+  EXPECT_EQ(static_cast<int>(held.q.size()), frames);
+  // Nobody held it: fixed, not a guess.
+  const JointEstimate alone = estimate_joint(t, no_hand(frames));
+  EXPECT_EQ(alone.type, "fixed");
+  EXPECT_FALSE(alone.assumed_moving);
+}
+
 // A small lever (6 x 1 x 1 cm) at its hinge end on the origin.
 Cloud lever() {
   Cloud c;

@@ -63,6 +63,7 @@ ojson joint_report(const JointEstimate& j) {
   r["type"] = j.type;
   r["source"] = j.source;
   r["confidence"] = j.confidence;
+  if (j.assumed_moving) r["assumed_moving"] = true;
   if (j.type != "fixed") {
     r["axis"] = vec(j.axis);
     r["origin"] = vec(j.origin);
@@ -224,8 +225,15 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     keep_receptor_contacts(roles, &hand_points);
   }
   std::vector<JointEstimate> joints(obs.parts.size());
-  for (int p : moving_parts)
-    if (tracks[p]) joints[p] = estimate_joint(*tracks[p], hand_points[p]);
+  for (int p : moving_parts) {
+    if (!tracks[p]) continue;
+    joints[p] = estimate_joint(*tracks[p], hand_points[p]);
+    if (joints[p].assumed_moving)
+      diags.warning("E1059", meta_file, 0, 0, "/parts/" + obs.parts[p].name,
+                    "part '" + obs.parts[p].name + "': the hand held it, but neither its own track nor the hand's shows it moving; it is taken as " +
+                        joints[p].type + " (the likelier moving joint), with low confidence",
+                    "film the part from where its motion shows, not hidden by the hand");
+  }
   stages.push_back(stage("articulation", since(t0)));
   if (progress) progress("infer: joints estimated");
 

@@ -368,6 +368,27 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.confidence = type == "revolute" ? decider->p_revolute : type == "prismatic" ? decider->p_prismatic : decider->p_fixed;
     if (type == "fixed" && j.has_part_track && !part_visible) j.confidence = 1.0;  // nothing shows a motion
   }
+  // A receptor the hand held (its contacts make a track) whose motion
+  // neither track shows: a button pressed under the finger, a knob turned
+  // by its centre or hidden by the hand. The recording is of someone
+  // operating it, so it moved: it takes the likelier moving model by the
+  // fused BIC, flagged as assumed, with that model's posterior against the
+  // other moving one halved as its confidence. Its geometry comes from the
+  // track that favours that model most over fixed. A part no hand held
+  // still comes out fixed when nothing shows it moving.
+  bool geometry_from_part = part_decides;
+  if (type == "fixed" && j.has_hand_track && std::isfinite(std::min(j.bic_revolute, j.bic_prismatic))) {
+    type = j.bic_revolute <= j.bic_prismatic ? "revolute" : "prismatic";
+    j.assumed_moving = true;
+    const double other = type == "revolute" ? j.bic_prismatic : j.bic_revolute;
+    const double mine = type == "revolute" ? j.bic_revolute : j.bic_prismatic;
+    j.confidence = 0.5 / (1 + std::exp(-0.5 * (other - mine)));
+    auto gain = [&](const Articulation& a) {
+      const ModelFit& m = type == "revolute" ? a.revolute : a.prismatic;
+      return a.fixed.valid && m.valid ? a.fixed.bic - m.bic : -std::numeric_limits<double>::infinity();
+    };
+    geometry_from_part = j.has_part_track && part_reliable && gain(j.from_part) > gain(j.from_hand);
+  }
   if (type == "fixed") {
     j.source = j.has_part_track ? "part" : "hand";
     return j;
@@ -376,7 +397,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // Geometry from the part's own poses when they show this motion, else
   // from the hand.
   std::vector<double> q(n, kNaN);
-  if (part_decides) {
+  if (geometry_from_part) {
     std::vector<std::vector<int>> frames_one_by_one;
     const Articulation a = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), type);
     part_frames = std::move(frames_one_by_one);
@@ -387,7 +408,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     for (size_t k = 0; k < part_frames.size() && k < a.q.size(); ++k)
       for (int f : part_frames[k]) q[f] = a.q[k];
   } else {
-    const Articulation& a = j.from_hand;
+    const Articulation a = j.from_hand.type == type ? j.from_hand : estimate_articulation_as(hand, type);
     j.source = "hand";
     j.type = type;
     j.axis = a.axis;

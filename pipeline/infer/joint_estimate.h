@@ -38,6 +38,9 @@ struct JointEstimate {
   Articulation from_part, from_hand;
   double bic_fixed = 0, bic_prismatic = 0, bic_revolute = 0;  // fused
   double confidence = 0;  // posterior of the chosen type under the fused BIC
+  // A receptor the hand held whose motion neither track shows: moving by
+  // assumption (the likelier moving model), not by evidence.
+  bool assumed_moving = false;
   int hand_samples = 0;
   // How much of the part track's motion its shape can show (visibility()).
   double part_visibility = 0;
