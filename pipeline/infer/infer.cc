@@ -70,15 +70,14 @@ ojson joint_report(const JointEstimate& j) {
     r["range"] = ojson::array({j.range_lo, j.range_hi});
     // The joint position per frame (the receptor's s_R for the templates);
     // null before the part was first seen.
-    ojson q = ojson::array();
-    for (double v : j.q) q.push_back(std::isfinite(v) ? ojson(v) : ojson(nullptr));
-    r["q"] = q;
-    if (!j.q_hand.empty()) {
-      // The same from the hand's contacts alone, for comparison.
-      ojson qh = ojson::array();
-      for (double v : j.q_hand) qh.push_back(std::isfinite(v) ? ojson(v) : ojson(nullptr));
-      r["q_hand"] = qh;
-    }
+    auto series = [](const std::vector<double>& v) {
+      ojson a = ojson::array();
+      for (double x : v) a.push_back(std::isfinite(x) ? ojson(x) : ojson(nullptr));
+      return a;
+    };
+    r["q"] = series(j.q);
+    // The same from the hand's contacts, where the part's track gave q.
+    if (!j.q_hand.empty()) r["q_hand"] = series(j.q_hand);
   }
   auto fits = [](const Articulation& a) {
     ojson f;
@@ -311,7 +310,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     po.motion.assign(n, Eigen::Isometry3d::Identity());
     if (po.joint_type != "fixed") {
       po.q = a.joint.q;
-      if (a.joint.source == "part") po.q_hand = a.joint.q_hand;
+      po.q_hand = a.joint.q_hand;
       for (int f = 0; f < n && f < static_cast<int>(po.q.size()); ++f) po.motion[f] = joint_motion(a.joint, po.q[f]);
     }
     po.bounds = recon[p].bounds;

@@ -397,6 +397,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // Geometry from the part's own poses when they show this motion, else
   // from the hand.
   std::vector<double> q(n, kNaN);
+  // The joint position from the hand's contacts along the chosen joint.
+  auto q_of_hand = [&]() {
+    std::vector<Eigen::Vector3d> h(n, Eigen::Vector3d::Constant(kNaN));
+    for (int f : hand_frames) h[f] = hand_points[f];
+    return smoothed(q_from_hand(j, h), 4);
+  };
   if (geometry_from_part) {
     std::vector<std::vector<int>> frames_one_by_one;
     const Articulation a = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), type);
@@ -413,15 +419,10 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.type = type;
     j.axis = a.axis;
     j.origin = a.origin;
-    std::vector<Eigen::Vector3d> h(n, Eigen::Vector3d::Constant(kNaN));
-    for (int f : hand_frames) h[f] = hand_points[f];
-    q = smoothed(q_from_hand(j, h), 4);
+    q = q_of_hand();
   }
-  if (j.has_hand_track) {
-    std::vector<Eigen::Vector3d> h(n, Eigen::Vector3d::Constant(kNaN));
-    for (int f : hand_frames) h[f] = hand_points[f];
-    j.q_hand = smoothed(q_from_hand(j, h), 4);
-  }
+  // The part's track gave q: the hand's is the templates' second candidate.
+  if (j.source == "part" && j.has_hand_track) j.q_hand = q_of_hand();
   // q = 0 where the part was first seen; the model's reference frame maps
   // there by the joint itself.
   double q_first = kNaN;

@@ -27,9 +27,10 @@ struct JointEstimate {
   // Per frame: the joint position (q = 0 in the first frame the part was
   // seen), NaN before it was; empty for fixed.
   std::vector<double> q;
-  // The same from the hand's contacts alone (the chosen axis; q = 0 at the
-  // first contact, held between grasps), NaN before; empty without a hand
-  // track. A report for comparing the two sources.
+  // Where q came from the part's own track and the hand held the part: the
+  // same from the hand's contacts alone (the chosen axis; q = 0 at the
+  // first contact, held between grasps), NaN before. Empty otherwise. The
+  // templates' second candidate for the receptor's state.
   std::vector<double> q_hand;
   // Maps the track's reference configuration to q = 0.
   Eigen::Isometry3d reference_to_zero = Eigen::Isometry3d::Identity();
