@@ -88,6 +88,84 @@ TEST(PipelineInfer, VisibilityTellsASpinningRingFromATurningDoor) {
   EXPECT_GT(visibility(door, "prismatic", Vector3d::UnitY(), Vector3d::Zero()), kMinVisibility);
 }
 
+TEST(PipelineInfer, AKnobTurnsAboutItselfADoorBesideIt) {
+  // The ring turns about its own axis; the door about a line along its edge.
+  EXPECT_TRUE(turns_about_itself(ring(0.03, 0.02), Vector3d::UnitZ(), Vector3d(0.002, -0.001, 0)));
+  EXPECT_FALSE(turns_about_itself(panel(), Vector3d::UnitZ(), Vector3d::Zero()));
+  // The same door about a vertical line through its middle would turn about itself.
+  EXPECT_TRUE(turns_about_itself(panel(), Vector3d::UnitZ(), Vector3d(0.3, 0, 0)));
+}
+
+// A part track with its registration's information: each frame's Hessian
+// says every direction is known to 5 mrad and 1 mm (the shape holds the
+// spin, a little), about the model's centroid.
+void with_information(PartTrack* t) {
+  const Vector3d c = centroid(t->model);
+  Eigen::Matrix<double, 6, 1> d;
+  d << Vector3d::Constant(1 / (0.005 * 0.005)), Vector3d::Constant(1 / (0.001 * 0.001));
+  for (size_t f = 0; f < t->motion.size(); ++f) {
+    t->hessian.push_back(Eigen::Matrix<double, 6, 6>(d.asDiagonal()) * t->rmse[f] * t->rmse[f]);
+    t->hessian_center.push_back(c);
+    t->hessian_scale.push_back(0.05);
+  }
+}
+
+// A round button 6 cm across on a face (normal z): its rim, its front and
+// a low ridge across the front, which is all that shows a turn.
+Cloud ridged_button() {
+  Cloud c = ring(0.03, 0.01);
+  for (int i = 1; i <= 5; ++i)
+    for (int k = 0; k < 36; ++k) {
+      const double a = 2 * kPi * k / 36, r = 0.03 * i / 5;
+      c.points.push_back(Vector3d(r * std::cos(a), r * std::sin(a), 0.01));
+      c.normals.push_back(Vector3d::UnitZ());
+    }
+  for (int i = 0; i < 12; ++i)
+    for (int h = 0; h < 3; ++h)
+      for (int side : {-1, 1}) {
+        c.points.push_back(Vector3d(side * 0.002, -0.024 + 0.004 * i, 0.011 + 0.002 * h));
+        c.normals.push_back(Vector3d(side, 0, 0));
+      }
+  return c;
+}
+
+TEST(PipelineInfer, AButtonsRegistrationThatSlipsRoundItsAxisStillShowsThePress) {
+  // The button's registration slips round its axis by a random walk,
+  // and it is pressed 8 mm along the axis twice. Its shape barely shows a
+  // turn, so the slip is not taken for a knob's turn.
+  const int frames = 150;
+  const Vector3d normal = Vector3d::UnitZ();
+  const Cloud model = ridged_button();
+  auto button = [&](bool pressed, unsigned seed) {
+    PartTrack t = turning(model, normal, Vector3d::Zero(), 0.0, frames, 0.0003, seed);
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> g(0, 1);
+    double slip = 0;
+    for (int f = 0; f < frames; ++f) {
+      slip += 0.03 * g(rng);
+      const bool in = pressed && ((f >= 40 && f < 56) || (f >= 100 && f < 116));
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.linear() = Eigen::AngleAxisd(slip, normal).toRotationMatrix();
+      T.translation() = t.motion[f].translation() + (in ? -0.008 : 0.0) * normal;
+      t.motion[f] = T;
+    }
+    with_information(&t);
+    return t;
+  };
+  const double shows = visibility(model, "revolute", normal, Vector3d::Zero());
+  ASSERT_GT(shows, kMinVisibility);
+  ASSERT_LT(shows, kSlipVisibility);
+  const JointEstimate pressed = estimate_joint(button(true, 31), no_hand(frames));
+  EXPECT_EQ(pressed.type, "prismatic");
+  EXPECT_TRUE(pressed.slide_over_turn);
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(pressed.axis.dot(normal)))), 0.1);
+  EXPECT_NEAR(pressed.range_hi - pressed.range_lo, 0.008, 0.002);
+  // Unpressed, the slip is all the track shows: a turn, not a slide.
+  const JointEstimate turned = estimate_joint(button(false, 32), no_hand(frames));
+  EXPECT_EQ(turned.type, "revolute");
+  EXPECT_FALSE(turned.slide_over_turn);
+}
+
 TEST(PipelineInfer, ADoorsPosesGiveItsHinge) {
   const int frames = 90;
   const PartTrack t = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 1);

@@ -319,6 +319,9 @@ Articulation estimate_articulation_as(const Track& track, const std::string& for
       fit_revolute_poses(track, &from_poses);
       fit_revolute_points(track, &from_points);
       a.revolute = fit_revolute_weighted(track, {from_poses, from_points}, &hinge);
+      a.slide_axis = hinge.axis;
+      a.slide = hinge.slide;
+      a.slide_bic = hinge.slide_bic;
     }
   } else {
     if (want_fixed) a.fixed = fit_fixed(track);

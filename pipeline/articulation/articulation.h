@@ -25,6 +25,7 @@
 
 #include <Eigen/Geometry>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,13 @@ struct Articulation {
   // The chosen model's joint coordinate of every sample (rad or m; the first
   // sample at 0, positive along `axis`); empty for fixed.
   std::vector<double> q;
+  // Pose tracks with information, the hinge fitted: the same hinge also
+  // sliding along its axis (HingeFit::slide). `slide` per sample (m, along
+  // `slide_axis`), and the BIC of hinge and slide together (infinite when
+  // not fitted).
+  Eigen::Vector3d slide_axis = Eigen::Vector3d::UnitZ();
+  std::vector<double> slide;
+  double slide_bic = std::numeric_limits<double>::infinity();
 };
 
 // Tracker precision floors (the residuals' smallest standard deviation).

@@ -384,6 +384,33 @@ ModelFit fit_revolute_weighted(const Track& track, const std::vector<HingeFit>& 
   for (double t : chosen.theta) hinge->theta.push_back(t - theta0);
   fit.parameters = 10 + static_cast<int>(n);
   finish(&fit, best_cost, chosen_w, residuals_of(chosen, track));
+  // The hinge also sliding along its axis (HingeFit::slide). The residual
+  // is linear in the slide, so each sample's best slide and what it gains
+  // (-2 log L) are closed-form. A sample takes its slide only where the
+  // gain pays for naming it (log(6n), as a coordinate costs); the slide as
+  // a whole costs one more parameter. A slide from rest goes one way (a
+  // button pressed in, a plunger pulled out), so only the samples on one
+  // side count, the side that gains more: a tracker's slips along the axis
+  // go both ways and split their gain.
+  const double per = std::log(6.0 * n);
+  Vec6 along = Vec6::Zero();
+  along.tail<3>() = chosen.a;
+  std::vector<double> slide(n, 0.0);
+  double saved[2] = {0, 0};  // negative, positive side
+  for (size_t i = 0; i < n; ++i) {
+    const Vec6 e = chosen_w.whiten(i, chosen.residual(track, i)), j = chosen_w.whiten(i, along);
+    const double jj = j.squaredNorm();
+    if (!(jj > 0)) continue;
+    const double gain = std::pow(j.dot(e), 2) / jj;
+    if (gain <= per) continue;
+    slide[i] = j.dot(e) / jj;
+    saved[slide[i] > 0] += gain - per;
+  }
+  const bool positive = saved[1] >= saved[0];
+  for (double& t : slide)
+    if ((t > 0) != positive) t = 0;
+  hinge->slide = std::move(slide);
+  if (fit.valid) hinge->slide_bic = fit.bic + per - saved[positive];
   return fit;
 }
 

@@ -25,6 +25,7 @@
 
 #include <Eigen/Geometry>
 
+#include <limits>
 #include <vector>
 
 #include "pipeline/articulation/track.h"
@@ -42,6 +43,14 @@ struct HingeFit {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ(), point = Eigen::Vector3d::Zero();  // the axis line
   double radius = 0;
   std::vector<double> theta;  // per sample, the first at 0, unwrapped
+  // The same hinge also sliding along its own axis (a cylinder), for a part
+  // that turns about an axis through itself: its turn may be only the
+  // registration slipping round a near-symmetry while the part is pressed
+  // in. Per sample the slide (m, along `axis`; 0 where a sample is better
+  // described at rest), and the BIC of hinge and slide together
+  // (fit_revolute_weighted()). Infinite when not fitted.
+  std::vector<double> slide;
+  double slide_bic = std::numeric_limits<double>::infinity();
 };
 
 // Each needs track.has_information(). `starts`: hinges fit otherwise (the

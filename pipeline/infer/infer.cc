@@ -64,6 +64,7 @@ ojson joint_report(const JointEstimate& j) {
   r["source"] = j.source;
   r["confidence"] = j.confidence;
   if (j.assumed_moving) r["assumed_moving"] = true;
+  if (j.slide_over_turn) r["slide_over_turn"] = true;
   if (j.type != "fixed") {
     r["axis"] = vec(j.axis);
     r["origin"] = vec(j.origin);

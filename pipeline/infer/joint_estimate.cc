@@ -269,6 +269,26 @@ double visibility(const Cloud& surface, const std::string& type, const Eigen::Ve
   return mine / generic;
 }
 
+bool turns_about_itself(const Cloud& model, const Eigen::Vector3d& axis, const Eigen::Vector3d& origin) {
+  if (model.size() == 0) return false;
+  // Medians, not means: a fused model keeps a few strays from the masks'
+  // edges, centimetres away.
+  const Eigen::Vector3d a = axis.normalized();
+  Eigen::Vector3d c;
+  for (int k = 0; k < 3; ++k) {
+    std::vector<double> v;
+    for (const Eigen::Vector3d& p : model.points) v.push_back(p[k]);
+    c[k] = median_of(v);
+  }
+  auto off_line = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& through) {
+    const Eigen::Vector3d d = p - through;
+    return (d - d.dot(a) * a).norm();
+  };
+  std::vector<double> across;
+  for (const Eigen::Vector3d& p : model.points) across.push_back(off_line(p, c));
+  return off_line(c, origin) < median_of(across);
+}
+
 Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   if (j.type == "prismatic") {
@@ -413,6 +433,29 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.origin = a.origin;
     for (size_t k = 0; k < part_frames.size() && k < a.q.size(); ++k)
       for (int f : part_frames[k]) q[f] = a.q[k];
+    // The slide must show on the typing's runs of frames too (a
+    // registration that jumps for a frame or two is not a press).
+    if (type == "revolute" && j.from_part.slide_bic < j.from_part.revolute.bic && a.slide_bic < a.revolute.bic &&
+        turns_about_itself(track.model, a.axis, a.origin) &&
+        visibility(track.model, "revolute", a.axis, a.origin) < kSlipVisibility) {
+      // A part turning about an axis through itself, a turn its shape
+      // barely shows (a round button, a knob), whose hinge explains its
+      // poses better when it also slides along that axis: the turn is what
+      // a near-symmetric shape lets the registration slip into, and the
+      // slide (a press) is what it shows. A knob that only turns gains
+      // nothing from the slide and stays a hinge; a lever's turn about its
+      // hub shows plainly on its arm and is never taken for a slip.
+      j.type = "prismatic";
+      j.slide_over_turn = true;
+      size_t peak = 0;
+      for (size_t k = 0; k < a.slide.size(); ++k)
+        if (std::abs(a.slide[k]) > std::abs(a.slide[peak])) peak = k;
+      const double sign = !a.slide.empty() && a.slide[peak] < 0 ? -1.0 : 1.0;
+      j.axis = sign * a.slide_axis;
+      std::fill(q.begin(), q.end(), kNaN);
+      for (size_t k = 0; k < part_frames.size() && k < a.slide.size(); ++k)
+        for (int f : part_frames[k]) q[f] = sign * a.slide[k];
+    }
   } else {
     const Articulation a = j.from_hand.type == type ? j.from_hand : estimate_articulation_as(hand, type);
     j.source = "hand";
@@ -443,12 +486,17 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   j.reference_to_zero = joint_motion(j, -q_ref);
   // The range: the 2nd to the 98th percentile of the positions seen (and 0),
   // so a few frames of tracker noise do not widen it.
+  // A slide found under a slipping turn is 0 wherever the part was at rest
+  // and a significant press elsewhere (HingeFit::slide), so all of it counts:
+  // a button pressed for fewer frames than the percentile cuts off is still
+  // pressed.
   {
     std::vector<double> sorted = q;
     std::sort(sorted.begin(), sorted.end());
     const size_t m = sorted.size();
-    j.range_lo = std::min(0.0, sorted[static_cast<size_t>(0.02 * (m - 1))]);
-    j.range_hi = std::max(0.0, sorted[static_cast<size_t>(0.98 * (m - 1))]);
+    const double cut = j.slide_over_turn ? 0.0 : 0.02;
+    j.range_lo = std::min(0.0, sorted[static_cast<size_t>(cut * (m - 1))]);
+    j.range_hi = std::max(0.0, sorted[static_cast<size_t>((1 - cut) * (m - 1))]);
   }
   if (j.type == "revolute" && j.range_hi - j.range_lo > 2 * kPi) j.type = "continuous";
   if (j.range_hi - j.range_lo < 1e-6) {

@@ -42,6 +42,11 @@ struct JointEstimate {
   // A receptor the hand held whose motion neither track shows: moving by
   // assumption (the likelier moving model), not by evidence.
   bool assumed_moving = false;
+  // A part that turns about an axis through itself, typed prismatic: its
+  // hinge fit explained its poses better with a slide along the same axis
+  // (Articulation::slide_bic), so the turn is taken for the registration
+  // slipping round a near-symmetry and the slide for the motion.
+  bool slide_over_turn = false;
   int hand_samples = 0;
   // How much of the part track's motion its shape can show (visibility()).
   double part_visibility = 0;
@@ -57,6 +62,16 @@ struct JointEstimate {
 double visibility(const Cloud& surface, const std::string& type, const Eigen::Vector3d& axis,
                   const Eigen::Vector3d& origin);
 constexpr double kMinVisibility = 0.1;
+// A turn less visible than this (half a generic turn) is one a
+// registration can slip into: a part whose track turns so about an axis
+// through itself, and also slides along it, is taken to slide.
+constexpr double kSlipVisibility = 0.5;
+
+// Whether a joint axis passes through the part (a knob's, a button's) rather
+// than beside it (a lever's, a door's hinge): the part's centroid is nearer
+// the axis line than the median distance of its points from a line along
+// the axis through its centroid (medians: a fused model keeps strays).
+bool turns_about_itself(const Cloud& model, const Eigen::Vector3d& axis, const Eigen::Vector3d& origin);
 
 // The joint's rigid motion at position q (object frame).
 Eigen::Isometry3d joint_motion(const JointEstimate& joint, double q);
