@@ -86,6 +86,11 @@ ojson joint_report(const JointEstimate& j) {
     f["samples"] = a.samples;
     f["residual_m"] = a.residual;
     f["p"] = {{"fixed", a.p_fixed}, {"prismatic", a.p_prismatic}, {"revolute", a.p_revolute}};
+    // The hinge that also slides along its axis (Articulation::slide_bic),
+    // beside the plain hinge's score: where it wins by much on a part
+    // turning about itself, the part is taken to slide (slide_over_turn).
+    if (std::isfinite(a.slide_bic) && a.revolute.valid)
+      f["bic"] = {{"revolute", a.revolute.bic}, {"revolute_and_slide", a.slide_bic}};
     return f;
   };
   r["bic"] = {{"fixed", j.bic_fixed}, {"prismatic", j.bic_prismatic}, {"revolute", j.bic_revolute}};
