@@ -289,6 +289,25 @@ bool turns_about_itself(const Cloud& model, const Eigen::Vector3d& axis, const E
   return off_line(c, origin) < median_of(across);
 }
 
+namespace {
+
+// A part turning about an axis through itself, a turn its shape barely
+// shows (a round button, a knob), whose hinge explains its poses better
+// when it also slides along that axis: the turn is what a near-symmetric
+// shape lets the registration slip into, and the slide (a press) is what
+// it shows. A knob that only turns gains nothing from the slide and stays a
+// hinge; a lever's turn about its hub shows plainly on its arm and is never
+// taken for a slip. The slide must show on the typing's runs of frames
+// (`typing`) as well as frame by frame (`frames`): a registration that
+// jumps for a frame or two is not a press.
+bool slides_under_a_slip(const Cloud& model, const Articulation& typing, const Articulation& frames) {
+  return typing.slide_bic < typing.revolute.bic && frames.slide_bic < frames.revolute.bic &&
+         turns_about_itself(model, frames.axis, frames.origin) &&
+         visibility(model, "revolute", frames.axis, frames.origin) < kSlipVisibility;
+}
+
+}  // namespace
+
 Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   if (j.type == "prismatic") {
@@ -433,18 +452,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.origin = a.origin;
     for (size_t k = 0; k < part_frames.size() && k < a.q.size(); ++k)
       for (int f : part_frames[k]) q[f] = a.q[k];
-    // The slide must show on the typing's runs of frames too (a
-    // registration that jumps for a frame or two is not a press).
-    if (type == "revolute" && j.from_part.slide_bic < j.from_part.revolute.bic && a.slide_bic < a.revolute.bic &&
-        turns_about_itself(track.model, a.axis, a.origin) &&
-        visibility(track.model, "revolute", a.axis, a.origin) < kSlipVisibility) {
-      // A part turning about an axis through itself, a turn its shape
-      // barely shows (a round button, a knob), whose hinge explains its
-      // poses better when it also slides along that axis: the turn is what
-      // a near-symmetric shape lets the registration slip into, and the
-      // slide (a press) is what it shows. A knob that only turns gains
-      // nothing from the slide and stays a hinge; a lever's turn about its
-      // hub shows plainly on its arm and is never taken for a slip.
+    if (type == "revolute" && slides_under_a_slip(track.model, j.from_part, a)) {
       j.type = "prismatic";
       j.slide_over_turn = true;
       size_t peak = 0;
