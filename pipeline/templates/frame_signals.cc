@@ -19,6 +19,12 @@ constexpr int kMinEffectorPixels = 4;
 constexpr int kBlobReach = 4;
 constexpr double kMinBlobContrast = 24;  // grey levels: a blob unlike its surroundings
 constexpr double kMaxBackgroundStep = 10;  // grey levels: ... which are alike
+// A mote's streak is thin: of the pixels within kStreakReach, few share its
+// colour (at most kMaxLikeShare). A lit patch of a white surface between a
+// shadow's ragged teeth passes the blob test too, but it belongs to the lit
+// surface around it, which fills much of that neighbourhood.
+constexpr int kStreakReach = 8;
+constexpr double kMaxLikeShare = 0.2;
 constexpr double kFallSide = 0.15;     // m: droplets thrown forward as they fall     // px: blobs up to ~7 px across
 
 
@@ -41,6 +47,21 @@ int blob_kind(const uint8_t* v, int reach, int W, size_t i, const uint8_t* px) {
     if ((R + G + B) / 3.0 > around / 2 + 12) return 2;
   }
   return 0;
+}
+
+// The share of pixels within kStreakReach of pixel (x, y) whose colour is
+// within kMinBlobContrast of its own, in every channel.
+double like_share(const uint8_t* px, int W, int H, int x, int y) {
+  const uint8_t* v = px + 3 * (static_cast<size_t>(y) * W + x);
+  int like = 0, total = 0;
+  for (int yy = std::max(0, y - kStreakReach); yy <= std::min(H - 1, y + kStreakReach); ++yy)
+    for (int xx = std::max(0, x - kStreakReach); xx <= std::min(W - 1, x + kStreakReach); ++xx) {
+      const uint8_t* q = px + 3 * (static_cast<size_t>(yy) * W + xx);
+      ++total;
+      like += std::abs(q[0] - v[0]) < kMinBlobContrast && std::abs(q[1] - v[1]) < kMinBlobContrast &&
+              std::abs(q[2] - v[2]) < kMinBlobContrast;
+    }
+  return total ? static_cast<double>(like) / total : 1.0;
 }
 
 Eigen::AlignedBox3d moved(const Eigen::AlignedBox3d& b, const Eigen::Isometry3d& T) {
@@ -72,6 +93,38 @@ std::vector<uint8_t> dilate(const std::vector<uint8_t>& m, int w, int h, int r) 
       out[y * w + x] = v;
     }
   return out;
+}
+
+// A blob pixel seen from an effector's space: its kind (1 droplet, 2 mote),
+// its area (m^2 at the effector), its point there, and how near its ray's
+// passage through that space comes to the effector's box.
+struct BlobClaim {
+  size_t pixel;
+  size_t effector;
+  int kind;
+  double area;
+  Eigen::Vector3d at;
+  double distance;
+};
+
+// The least distance to `box` of the ray eye + t d (t: depth along the
+// optical axis) over its passage through `space` in front of the background
+// at depth bg (0: none), sampled at kRaySamples points.
+constexpr int kRaySamples = 16;
+double ray_distance(const Eigen::Vector3d& eye, const Eigen::Vector3d& d, double bg,
+                    const Eigen::AlignedBox3d& space, const Eigen::AlignedBox3d& box) {
+  double t0 = 0, t1 = 1e9;
+  for (int k = 0; k < 3; ++k) {
+    if (std::fabs(d[k]) < 1e-12) continue;
+    double a = (space.min()[k] - eye[k]) / d[k], c = (space.max()[k] - eye[k]) / d[k];
+    if (a > c) std::swap(a, c);
+    t0 = std::max(t0, a), t1 = std::min(t1, c);
+  }
+  if (bg > 0) t1 = std::min(t1, bg);
+  if (!(t1 > t0)) t1 = t0;
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= kRaySamples; ++k) best = std::min(best, box.exteriorDistance(eye + d * (t0 + (t1 - t0) * k / kRaySamples)));
+  return best;
 }
 
 struct Worker {
@@ -143,6 +196,7 @@ struct Worker {
       for (int c = 0; c < 8; ++c)
         far_z = std::max(far_z, (obj_to_cam * object_box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c))).z());
 
+    std::vector<BlobClaim> claims;
     for (size_t e = 0; e < effectors->size(); ++e) {
       const PartObservation& part = in->parts[(*effectors)[e]];
       EffectorSignals& o = (*out)[e];
@@ -254,7 +308,8 @@ struct Worker {
       // two pixels or more across, and the scan is the stage's main cost.
       const int stride = W >= 600 ? 2 : 1;
       const double px_count = px_area * stride * stride;
-      double drop_area = 0, mote_area = 0, surround_lum = 0;
+      double surround_lum = 0;
+      o.droplets[f] = o.motes[f] = 0;  // observed: the claims below add to them
       long surround_n = 0;
       for (int y = y0; y <= y1; y += stride)
         for (int x = x0; x <= x1; x += stride) {
@@ -292,23 +347,44 @@ struct Worker {
           // spread, not on levels.
           const int kind = blob_kind(v, kBlobReach, W, i, rgb.pixels.data());
           if (kind == 0) continue;
+          if (kind == 2 && like_share(rgb.pixels.data(), W, H, x, y) > kMaxLikeShare) continue;
           const Eigen::Vector3d d = Rco * Eigen::Vector3d((x - K.cx) / K.fx, (y - K.cy) / K.fy, 1.0);
           const double bg = have_depth && depth.pixels[i] ? depth.pixels[i] * M.depth_scale : 0;
           Eigen::Vector3d at;
-          if (kind == 1 && (through(below, d, bg, &at) || through(around, d, bg, &at))) {
-            drop_area += px_count;
-            s.droplet_sum += at;
-            ++s.droplet_points;
-            s.droplet_top_z = std::max(s.droplet_top_z, at.z());
-          } else if (kind == 2 && (through(around, d, bg, &at) || through(below, d, bg, &at))) {
-            mote_area += px_count;
-            s.mote_sum += at;
-            ++s.mote_points;
-          }
+          const bool inside = kind == 1 ? through(below, d, bg, &at) || through(around, d, bg, &at)
+                                        : through(around, d, bg, &at) || through(below, d, bg, &at);
+          if (inside) claims.push_back({i, e, kind, px_count, at, ray_distance(eye, d, bg, roi, eb)});
         }
-      o.droplets[f] = drop_area;
       if (surround_n > 0) o.surround[f] = surround_lum / surround_n / 255.0;
-      o.motes[f] = mote_area;
+    }
+    settle_claims(f, &claims);
+  }
+
+  // A blob seen from several effectors' spaces (a vent's motes rise past a
+  // lamp beside it) is theirs only whose box its ray passes nearest: each
+  // pixel counts once, for one effector.
+  void settle_claims(int f, std::vector<BlobClaim>* claims) {
+    std::stable_sort(claims->begin(), claims->end(), [](const BlobClaim& a, const BlobClaim& b) {
+      return a.pixel != b.pixel ? a.pixel < b.pixel : a.distance < b.distance;
+    });
+    int owner = -1;  // the part the current pixel went to (an effector listed twice gets it twice)
+    for (size_t k = 0; k < claims->size(); ++k) {
+      const BlobClaim& c = (*claims)[k];
+      const int part = (*effectors)[c.effector];
+      if (k == 0 || c.pixel != (*claims)[k - 1].pixel) owner = part;
+      else if (part != owner) continue;  // a nearer effector has it
+      EffectorSignals& o = (*out)[c.effector];
+      EffectorSignals& s = sums[c.effector];
+      if (c.kind == 1) {
+        o.droplets[f] += c.area;
+        s.droplet_sum += c.at;
+        ++s.droplet_points;
+        s.droplet_top_z = std::max(s.droplet_top_z, c.at.z());
+      } else {
+        o.motes[f] += c.area;
+        s.mote_sum += c.at;
+        ++s.mote_points;
+      }
     }
   }
 };

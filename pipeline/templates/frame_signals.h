@@ -19,8 +19,13 @@
 // agrees with the part's box, the hand's pixels left out.
 // A blob pixel: in no part's mask nor the (grown) hand's, unlike both of its
 // neighbours 1-3 px away across a row or a column while those two are alike
-// (a droplet or a mote's streak, not the edge between two surfaces). Blobs
-// are found in colour, not depth: droplets and motes are translucent, and
+// (a droplet or a mote's streak, not the edge between two surfaces). A
+// mote's streak is thin as well: a candidate most of whose neighbourhood
+// (8 px around) shares its colour is a lit patch of a surface (a shadow's
+// ragged edge on a white floor), not a mote. A blob whose ray passes
+// through several effectors' spaces counts once, for the effector whose
+// box the ray passes nearest (a vent's motes rising past a lamp beside it
+// are the vent's). Blobs are found in colour, not depth: droplets and motes are translucent, and
 // translucent bodies leave no depth. Their ray must enter the space in
 // question before the surface the depth sees. Frames where that space is out
 // of view, or the effector has no pixels, are NaN (not observed).
