@@ -166,6 +166,38 @@ TEST(PipelineInfer, AButtonsRegistrationThatSlipsRoundItsAxisStillShowsThePress)
   EXPECT_FALSE(turned.slide_over_turn);
 }
 
+TEST(PipelineInfer, AnEffectorsRegistrationThatSlipsRoundItselfLeavesItFixed) {
+  // A round indicator nobody operates: its registration slips round its own
+  // axis by a random walk, a turn its shape barely shows. As an effector it
+  // stays fixed (the turn is the slip); the same track on a receptor is a
+  // knob's turn. A door driven about a hinge beside it still turns.
+  const int frames = 150;
+  const Vector3d normal = Vector3d::UnitZ();
+  PartTrack t = turning(ridged_button(), normal, Vector3d::Zero(), 0.0, frames, 0.0003, 41);
+  std::mt19937 rng(41);
+  std::normal_distribution<double> g(0, 1);
+  double slip = 0;
+  for (int f = 0; f < frames; ++f) {
+    slip += 0.03 * g(rng);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(slip, normal).toRotationMatrix();
+    T.translation() = t.motion[f].translation();
+    t.motion[f] = T;
+  }
+  with_information(&t);
+  const JointEstimate led = estimate_joint(t, no_hand(frames), false);
+  EXPECT_EQ(led.type, "fixed");
+  EXPECT_TRUE(led.turn_taken_for_slip);
+  EXPECT_TRUE(led.q.empty());
+  const JointEstimate knob = estimate_joint(t, no_hand(frames), true);
+  EXPECT_EQ(knob.type.substr(0, 4) == "cont" ? "revolute" : knob.type, "revolute");
+  EXPECT_FALSE(knob.turn_taken_for_slip);
+  PartTrack door = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 42);
+  const JointEstimate driven = estimate_joint(door, no_hand(frames), false);
+  EXPECT_EQ(driven.type, "revolute");
+  EXPECT_FALSE(driven.turn_taken_for_slip);
+}
+
 TEST(PipelineInfer, ADoorsPosesGiveItsHinge) {
   const int frames = 90;
   const PartTrack t = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 1);

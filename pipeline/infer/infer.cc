@@ -65,6 +65,7 @@ ojson joint_report(const JointEstimate& j) {
   r["confidence"] = j.confidence;
   if (j.assumed_moving) r["assumed_moving"] = true;
   if (j.slide_over_turn) r["slide_over_turn"] = true;
+  if (j.turn_taken_for_slip) r["turn_taken_for_slip"] = true;
   if (j.type != "fixed") {
     r["axis"] = vec(j.axis);
     r["origin"] = vec(j.origin);
@@ -232,7 +233,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   std::vector<JointEstimate> joints(obs.parts.size());
   for (int p : moving_parts) {
     if (!tracks[p]) continue;
-    joints[p] = estimate_joint(*tracks[p], hand_points[p]);
+    const bool operated = obs.parts[p].role.find("receptor") != std::string::npos;  // receptor, receptor+effector
+    joints[p] = estimate_joint(*tracks[p], hand_points[p], operated);
     if (joints[p].assumed_moving)
       diags.warning("E1059", meta_file, 0, 0, "/parts/" + obs.parts[p].name,
                     "part '" + obs.parts[p].name + "': the hand held it, but neither its own track nor the hand's shows it moving; it is taken as " +

@@ -300,10 +300,16 @@ namespace {
 // taken for a slip. The slide must show on the typing's runs of frames
 // (`typing`) as well as frame by frame (`frames`): a registration that
 // jumps for a frame or two is not a press.
+// A hinge fit whose turn a registration can slip into: about an axis
+// through the part, and barely shown by its shape.
+bool turn_a_slip_could_be(const Cloud& model, const Articulation& fit) {
+  return turns_about_itself(model, fit.axis, fit.origin) &&
+         visibility(model, "revolute", fit.axis, fit.origin) < kSlipVisibility;
+}
+
 bool slides_under_a_slip(const Cloud& model, const Articulation& typing, const Articulation& frames) {
   return typing.slide_bic < typing.revolute.bic && frames.slide_bic < frames.revolute.bic &&
-         turns_about_itself(model, frames.axis, frames.origin) &&
-         visibility(model, "revolute", frames.axis, frames.origin) < kSlipVisibility;
+         turn_a_slip_could_be(model, frames);
 }
 
 }  // namespace
@@ -319,7 +325,7 @@ Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
   return T;
 }
 
-JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points) {
+JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points, bool operated) {
   JointEstimate j;
   const int n = static_cast<int>(track.motion.size());
   // The part's own track: the pose of its model's centroid per tracked
@@ -463,6 +469,16 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       std::fill(q.begin(), q.end(), kNaN);
       for (size_t k = 0; k < part_frames.size() && k < a.slide.size(); ++k)
         for (int f : part_frames[k]) q[f] = sign * a.slide[k];
+    } else if (type == "revolute" && !operated && !j.has_hand_track && turn_a_slip_could_be(track.model, a)) {
+      // Nobody operates it, and the turn is one its registration can slip
+      // into (a round LED, a burner, a grille's disc): the turn is the slip
+      // and the part stays where it is. A driven lid or door turns about a
+      // hinge beside it, which its shape shows plainly; a receptor's turn
+      // about itself is a knob's (without a hand track: --no-hands).
+      j.type = "fixed";
+      j.turn_taken_for_slip = true;
+      j.confidence = 0.5;  // by the rule, not by the likelihoods (which favour the turn)
+      return j;
     }
   } else {
     const Articulation a = j.from_hand.type == type ? j.from_hand : estimate_articulation_as(hand, type);

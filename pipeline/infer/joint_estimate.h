@@ -47,6 +47,11 @@ struct JointEstimate {
   // (Articulation::slide_bic), so the turn is taken for the registration
   // slipping round a near-symmetry and the slide for the motion.
   bool slide_over_turn = false;
+  // A part no hand held whose track turns about an axis through itself, a
+  // turn its shape barely shows, and that shows no slide either: typed
+  // fixed, the turn taken for its registration slipping round a
+  // near-symmetry.
+  bool turn_taken_for_slip = false;
   int hand_samples = 0;
   // How much of the part track's motion its shape can show (visibility()).
   double part_visibility = 0;
@@ -87,7 +92,11 @@ Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int 
                    std::vector<std::vector<int>>* frames_of_sample, bool drop_unconstrained = false);
 
 // hand_points[f]: the hand's contact point in the object frame in the frames
-// it holds this part (NaN elsewhere).
-JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points);
+// it holds this part (NaN elsewhere). `operated`: someone may move the part
+// (a receptor's role); an effector or another part only its function or
+// nothing moves, so a turn its registration can slip into is not taken for
+// a motion there (JointEstimate::turn_taken_for_slip).
+JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points,
+                             bool operated = true);
 
 }  // namespace efc::pipeline

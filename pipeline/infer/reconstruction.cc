@@ -10,7 +10,11 @@ PartReconstruction reconstruct_part(const Observations& obs, int part, const std
                                     const PartTrack* track, const JointEstimate* joint) {
   const auto start = std::chrono::steady_clock::now();
   PartReconstruction out;
-  const bool moves = track && joint && joint->type != "fixed";
+  // A part typed fixed because its turn is its registration slipping round a
+  // near-symmetry still has that registration: its frames are fused along
+  // it, as a moving part's (the slip turns the shape into itself, and the
+  // frames the registration refused, a swapped or spilt mask, stay out).
+  const bool moves = track && joint && (joint->type != "fixed" || joint->turn_taken_for_slip);
   FusionOptions fo;
   fo.voxel = 0.003;
   fo.min_observations = 2;
