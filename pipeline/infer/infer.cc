@@ -320,6 +320,11 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
       po.q = a.joint.q;
       po.q_hand = a.joint.q_hand;
       for (int f = 0; f < n && f < static_cast<int>(po.q.size()); ++f) po.motion[f] = joint_motion(a.joint, po.q[f]);
+    } else if (a.joint.turn_taken_for_slip && tracks[p]) {
+      // Fixed, but its registration places it in each frame better than the
+      // object's alone does (as in its fusion): its pixels are found there.
+      for (int f = 0; f < n && f < static_cast<int>(tracks[p]->motion.size()); ++f)
+        if (tracks[p]->tracked[f]) po.motion[f] = tracks[p]->motion[f];
     }
     po.bounds = recon[p].bounds;
     po.surface = recon[p].fused.points;
