@@ -233,7 +233,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   std::vector<JointEstimate> joints(obs.parts.size());
   for (int p : moving_parts) {
     if (!tracks[p]) continue;
-    const bool operated = obs.parts[p].role.find("receptor") != std::string::npos;  // receptor, receptor+effector
+    const std::string& role = obs.parts[p].role;
+    const bool operated = role == "receptor" || role == "receptor+effector";  // as spec_role's receptors
     joints[p] = estimate_joint(*tracks[p], hand_points[p], operated);
     if (joints[p].assumed_moving)
       diags.warning("E1059", meta_file, 0, 0, "/parts/" + obs.parts[p].name,

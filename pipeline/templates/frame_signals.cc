@@ -107,19 +107,32 @@ struct BlobClaim {
   double distance;
 };
 
-// The least distance to `box` of the ray eye + t d (t: depth along the
-// optical axis) over its passage through `space` in front of the background
-// at depth bg (0: none), sampled at kRaySamples points.
+// Where the ray eye + t d (t: depth along the optical axis, t >= 0) is
+// inside box b: [*t0, *t1]. False when it misses the box.
+bool ray_passage(const Eigen::Vector3d& eye, const Eigen::Vector3d& d, const Eigen::AlignedBox3d& b, double* t0,
+                 double* t1) {
+  *t0 = 0, *t1 = 1e9;
+  for (int k = 0; k < 3; ++k) {
+    if (std::fabs(d[k]) < 1e-12) {
+      if (eye[k] < b.min()[k] || eye[k] > b.max()[k]) return false;
+      continue;
+    }
+    double a = (b.min()[k] - eye[k]) / d[k], c = (b.max()[k] - eye[k]) / d[k];
+    if (a > c) std::swap(a, c);
+    *t0 = std::max(*t0, a), *t1 = std::min(*t1, c);
+  }
+  return *t0 < *t1;
+}
+
+// The least distance to `box` of the ray eye + t d over its passage through
+// `space` in front of the background at depth bg (0: none), sampled at
+// kRaySamples points. (A blob is claimed only where its ray passes through
+// part of `space`, so the passage is there.)
 constexpr int kRaySamples = 16;
 double ray_distance(const Eigen::Vector3d& eye, const Eigen::Vector3d& d, double bg,
                     const Eigen::AlignedBox3d& space, const Eigen::AlignedBox3d& box) {
-  double t0 = 0, t1 = 1e9;
-  for (int k = 0; k < 3; ++k) {
-    if (std::fabs(d[k]) < 1e-12) continue;
-    double a = (space.min()[k] - eye[k]) / d[k], c = (space.max()[k] - eye[k]) / d[k];
-    if (a > c) std::swap(a, c);
-    t0 = std::max(t0, a), t1 = std::min(t1, c);
-  }
+  double t0, t1;
+  if (!ray_passage(eye, d, space, &t0, &t1)) t1 = t0;
   if (bg > 0) t1 = std::min(t1, bg);
   if (!(t1 > t0)) t1 = t0;
   double best = std::numeric_limits<double>::infinity();
@@ -290,17 +303,8 @@ struct Worker {
       const double px_area = (ez / K.fx) * (ez / K.fy);  // m^2 per pixel at the effector
       // Where a ray (t = depth along the optical axis) is inside a box.
       auto through = [&](const Eigen::AlignedBox3d& b, const Eigen::Vector3d& d, double bg, Eigen::Vector3d* at) {
-        double t0 = 0, t1 = 1e9;
-        for (int k = 0; k < 3; ++k) {
-          if (std::fabs(d[k]) < 1e-12) {
-            if (eye[k] < b.min()[k] || eye[k] > b.max()[k]) return false;
-            continue;
-          }
-          double a = (b.min()[k] - eye[k]) / d[k], c = (b.max()[k] - eye[k]) / d[k];
-          if (a > c) std::swap(a, c);
-          t0 = std::max(t0, a), t1 = std::min(t1, c);
-        }
-        if (t0 >= t1 || (bg > 0 && t0 >= bg)) return false;  // misses it, or the background is in front
+        double t0, t1;
+        if (!ray_passage(eye, d, b, &t0, &t1) || (bg > 0 && t0 >= bg)) return false;  // misses it, or the background is in front
         *at = eye + d * (0.5 * (t0 + std::min(t1, bg > 0 ? bg : t1)));
         return true;
       };
