@@ -1,5 +1,7 @@
 #include "pipeline/infer/part_tracking.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,16 +25,52 @@ namespace {
 
 constexpr size_t kMinPoints = 12;
 
+// The part of a registration step `step` (model frame, applied on the left)
+// that the registration of its last frame could see: its twist about that
+// registration's Hessian centre, in the Hessian's normalised coordinates
+// (IcpResult), keeps only the components along directions constrained
+// above `threshold`. A constant-velocity start extrapolates this: a motion
+// along a direction the data cannot fix (a round knob's spin, a finger's
+// roll) was never measured, and carried on frame after frame it runs away.
+Eigen::Isometry3d seen_part_of_step(const Eigen::Isometry3d& step, const Eigen::Matrix<double, 6, 6>& hessian,
+                                    const Eigen::Vector3d& centre, double scale, double threshold) {
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  const double weight_sum = hessian.block<3, 3>(3, 3).trace();
+  if (!(scale > 0) || !(weight_sum > 0)) return Eigen::Isometry3d::Identity();
+  const Eigen::AngleAxisd aa(step.linear());
+  Vec6 y;
+  y.head<3>() = scale * aa.angle() * aa.axis();
+  y.tail<3>() = step * centre - centre;
+  Vec6 d;
+  d << 1 / scale, 1 / scale, 1 / scale, 1, 1, 1;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(d.asDiagonal() * hessian * d.asDiagonal() /
+                                                                        weight_sum);
+  Vec6 kept = Vec6::Zero();
+  for (int k = 0; k < 6; ++k)
+    if (eig.eigenvalues()(k) >= threshold) kept += eig.eigenvectors().col(k).dot(y) * eig.eigenvectors().col(k);
+  const Eigen::Vector3d w = kept.head<3>() / scale;
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  if (w.norm() > 0) out.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+  out.translation() = centre + kept.tail<3>() - out.linear() * centre;
+  return out;
+}
+
+Cloud in_object(const std::vector<Cloud>& clouds, int frame, const std::vector<Eigen::Isometry3d>& to_object) {
+  Cloud c = clouds[frame];
+  transform_cloud(to_object[frame], &c);
+  return c;
+}
+
 // ICP maps frame points onto the model: the inverse of the part's motion.
 // `seeded`: pass 2. A frame registered in pass 1 starts from its pass-1
 // motion, fine alignment only; the others are tracked as in pass 1.
-void register_frames(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object,
+void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::Isometry3d>& to_object,
                      const Cloud& model, bool seeded, PartTrack* out) {
   const std::vector<bool> seed_ok = out->tracked;
   std::vector<Eigen::Isometry3d> seed(out->motion.size());
   for (size_t f = 0; f < seed.size(); ++f) seed[f] = out->motion[f].inverse();
   const KdTree tree(model.points);
-  const int n = static_cast<int>(obs.times.size());
+  const int n = static_cast<int>(clouds.size());
   IcpOptions fine;
   fine.max_correspondence = 0.015;
   fine.kernel_scale = 0.004;
@@ -57,11 +95,15 @@ void register_frames(const Observations& obs, int part, const std::vector<Eigen:
     } else if (last_good >= 0) {
       starts.push_back(to_model[last_good]);
       // Constant velocity: the last registered step again, per frame.
-      if (before_last_good >= 0 && std::abs(last_good - before_last_good) == 1)
-        starts.insert(starts.begin(), to_model[last_good] * (to_model[before_last_good].inverse() * to_model[last_good]));
+      if (before_last_good >= 0 && std::abs(last_good - before_last_good) == 1) {
+        const Eigen::Isometry3d step = to_model[last_good] * to_model[before_last_good].inverse();
+        const Eigen::Isometry3d seen = seen_part_of_step(step, out->hessian[last_good], out->hessian_center[last_good],
+                                                         out->hessian_scale[last_good], kTrackDegenerateThreshold);
+        starts.insert(starts.begin(), seen * to_model[last_good]);
+      }
     }
     if (!from_seed) starts.push_back(Eigen::Isometry3d::Identity());  // the reference configuration
-    const Cloud c = part_cloud_in_object(obs, part, f, to_object);
+    const Cloud c = in_object(clouds, f, to_object);
     out->tracked[f] = false;
     to_model[f] = starts.front();
     if (c.size() < kMinPoints) return;
@@ -107,13 +149,12 @@ void register_frames(const Observations& obs, int part, const std::vector<Eigen:
 // frames where it is where it usually is. Segmenters swap identities now and
 // then, and a frame whose "knob" mask holds the door would make the door the
 // model; its centroid gives it away.
-int reference_frame(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object) {
-  const PartFrames& pf = obs.parts[part];
-  const int n = static_cast<int>(pf.clouds.size());
+int reference_frame(const std::vector<Cloud>& clouds, const std::vector<Eigen::Isometry3d>& to_object) {
+  const int n = static_cast<int>(clouds.size());
   std::vector<Eigen::Vector3d> centre(n, Eigen::Vector3d::Zero());
   std::vector<double> xs, ys, zs, counts;
   for (int f = 0; f < n; ++f) {
-    const Cloud& c = pf.clouds[f];
+    const Cloud& c = clouds[f];
     if (c.size() < kMinPoints) continue;
     for (const Eigen::Vector3d& p : c.points) centre[f] += p;
     centre[f] = to_object[f] * Eigen::Vector3d(centre[f] / static_cast<double>(c.size()));
@@ -128,7 +169,7 @@ int reference_frame(const Observations& obs, int part, const std::vector<Eigen::
   const Eigen::Vector3d typical(median(xs), median(ys), median(zs));
   std::vector<double> spread;
   for (int f = 0; f < n; ++f)
-    if (pf.clouds[f].size() >= kMinPoints) spread.push_back((centre[f] - typical).norm());
+    if (clouds[f].size() >= kMinPoints) spread.push_back((centre[f] - typical).norm());
   // A part that moves spreads its centroids; twice the median distance
   // keeps its usual places and drops the strays.
   const double keep = std::max(0.02, 2.0 * median(spread));
@@ -136,7 +177,7 @@ int reference_frame(const Observations& obs, int part, const std::vector<Eigen::
   int best = -1;
   size_t best_count = 0;
   for (int f = 0; f < n; ++f) {
-    const size_t count = pf.clouds[f].size();
+    const size_t count = clouds[f].size();
     if (count < kMinPoints || (centre[f] - typical).norm() > keep || count > most) continue;
     if (count > best_count) best_count = count, best = f;
   }
@@ -146,10 +187,15 @@ int reference_frame(const Observations& obs, int part, const std::vector<Eigen::
 }  // namespace
 
 PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object) {
+  PartTrack out = track_clouds(obs.parts[part].clouds, to_object);
+  out.part = part;
+  return out;
+}
+
+PartTrack track_clouds(const std::vector<Cloud>& clouds, const std::vector<Eigen::Isometry3d>& to_object) {
   const auto start = std::chrono::steady_clock::now();
   PartTrack out;
-  out.part = part;
-  const int n = static_cast<int>(obs.times.size());
+  const int n = static_cast<int>(clouds.size());
   out.motion.assign(n, Eigen::Isometry3d::Identity());
   out.tracked.assign(n, false);
   out.rmse.assign(n, 0);
@@ -158,12 +204,12 @@ PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen:
   out.hessian.assign(n, Eigen::Matrix<double, 6, 6>::Zero());
   out.hessian_center.assign(n, Eigen::Vector3d::Zero());
   out.hessian_scale.assign(n, 0.0);
-  out.reference_frame = reference_frame(obs, part, to_object);
+  out.reference_frame = reference_frame(clouds, to_object);
   if (out.reference_frame < 0) return out;
 
   // Pass 1: onto the reference frame's own points.
-  Cloud model = part_cloud_in_object(obs, part, out.reference_frame, to_object);
-  register_frames(obs, part, to_object, model, false, &out);
+  Cloud model = in_object(clouds, out.reference_frame, to_object);
+  register_frames(clouds, to_object, model, false, &out);
   // Pass 2: onto every tracked frame fused in the reference configuration.
   // The model's resolution follows the part's size: 3 mm for a knob, up to
   // 1 cm for a door (a finer model of a large part only slows ICP).
@@ -175,14 +221,14 @@ PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen:
   PartFusion fusion(fo);
   for (int f = 0; f < n; ++f) {
     if (!out.tracked[f]) continue;
-    Cloud c = part_cloud_in_object(obs, part, f, to_object);
+    Cloud c = in_object(clouds, f, to_object);
     transform_cloud(out.motion[f].inverse(), &c);
     fusion.add_frame(c);
   }
   Cloud fused = fusion.fused();
   if (fused.size() >= model.size() && fused.has_normals()) {
     model = std::move(fused);
-    register_frames(obs, part, to_object, model, true, &out);
+    register_frames(clouds, to_object, model, true, &out);
   }
   out.model = std::move(model);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

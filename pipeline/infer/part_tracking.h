@@ -50,6 +50,9 @@ struct PartTrack {
 
 // to_object[f] maps frame f's points (world of poses.txt) into the object frame.
 PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object);
+// The same for any rigid thing seen frame by frame: clouds[f] in the world
+// frame of poses.txt (empty where unseen). `part` is left -1.
+PartTrack track_clouds(const std::vector<Cloud>& clouds, const std::vector<Eigen::Isometry3d>& to_object);
 
 // The part's points of frame f in the object frame.
 Cloud part_cloud_in_object(const Observations& obs, int part, int frame,
