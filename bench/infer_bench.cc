@@ -7,8 +7,8 @@
 //               [--seed S] [--json FILE]
 //
 // Prints, per spec, the seconds of each stage of report.json's "stages"
-// (observations, ego_motion, part_motion, articulation, reconstruction,
-// templates), the whole infer (infer_sequence + writing the output, wall and
+// (observations, ego_motion, part_motion, grip_motion, articulation,
+// reconstruction, templates), the whole infer (infer_sequence + writing the output, wall and
 // CPU), and the goals: articulation <= 1 s, the whole infer <= 30 s on
 // 2 cores (--threads 2, the CLI's default). Specs: EFC_BENCH_SPECS (default
 // stove, microwave, kitchen_drawer: small knobs, a door and small buttons, a
@@ -40,8 +40,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const kStages[] = {"observations", "ego_motion", "part_motion", "articulation", "reconstruction",
-                               "templates"};
+const char* const kStages[] = {"observations", "ego_motion",     "part_motion", "grip_motion",
+                               "articulation", "reconstruction", "templates"};
 constexpr double kArticulationGoal = 1.0;  // s
 constexpr double kInferGoal = 30.0;        // s, on 2 cores
 
@@ -111,8 +111,8 @@ int main(int argc, char** argv) {
   nlohmann::json results = nlohmann::json::array();
   std::printf("Inference: efc infer on efc synth sequences, %d frames at %dx%d, noise %s, %d threads (seconds)\n",
               frames, width, height, noise.c_str(), threads);
-  std::printf("%-16s %6s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "spec", "parts", "observ", "ego", "part_mo",
-              "artic", "recon", "templ", "infer", "total", "cpu");
+  std::printf("%-16s %6s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s\n", "spec", "parts", "observ", "ego", "part_mo",
+              "grip_mo", "artic", "recon", "templ", "infer", "total", "cpu");
   std::fflush(stdout);
   int status = 0;
   double worst_artic = 0, worst_total = 0;
@@ -192,7 +192,8 @@ int main(int argc, char** argv) {
     ++measured;
     results.push_back(row);
   }
-  std::printf("\ncolumns: observ = observations, ego = ego_motion, part_mo = part_motion, artic = articulation,\n"
+  std::printf("\ncolumns: observ = observations, ego = ego_motion, part_mo = part_motion, grip_mo = grip_motion\n"
+              "(the hand's points tracked while it holds a receptor), artic = articulation,\n"
               "recon = reconstruction, templ = templates (report.json's stages); infer = infer_sequence wall,\n"
               "total = + writing spec.json, meshes/, report.json (what `efc infer` does); cpu = CPU seconds of both\n");
   if (measured > 0) {

@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 
 #include "pipeline/infer/ego_motion.h"
+#include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/hand_contacts.h"
 #include "pipeline/infer/joint_estimate.h"
 #include "pipeline/infer/spec_assembly.h"
@@ -265,6 +267,150 @@ TEST(PipelineInfer, AReceptorTheHandHeldMovedEvenWhenNothingShowsIt) {
   const JointEstimate alone = estimate_joint(t, no_hand(frames));
   EXPECT_EQ(alone.type, "fixed");
   EXPECT_FALSE(alone.assumed_moving);
+}
+
+// The faces of a box (half sizes `half`) centred at `centre`, outward normals.
+Cloud box_faces(const Vector3d& half, const Vector3d& centre) {
+  Cloud c;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side : {-1, 1})
+      for (int i = 0; i <= 8; ++i)
+        for (int j = 0; j <= 8; ++j) {
+          Vector3d p, n = Vector3d::Zero();
+          const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+          p[axis] = side * half[axis];
+          p[u] = -half[u] + 2 * half[u] * i / 8;
+          p[v] = -half[v] + 2 * half[v] * j / 8;
+          n[axis] = side;
+          c.points.push_back(p + centre);
+          c.normals.push_back(n);
+        }
+  return c;
+}
+
+// A round button or knob's track (the ridged button, axis z) whose
+// registration slips round the axis by a random walk and shows nothing
+// else: the hand hides its press, or its shape its turn.
+PartTrack slipping(int frames, unsigned seed) {
+  PartTrack t = turning(ridged_button(), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0003, seed);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  double slip = 0;
+  for (int f = 0; f < frames; ++f) {
+    slip += 0.03 * g(rng);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(slip, Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() = t.motion[f].translation();
+    t.motion[f] = T;
+  }
+  with_information(&t);
+  return t;
+}
+
+// The grip's track: a hand (a palm-sized box above and beside the part's
+// axis, and a finger-sized one on it) seen in frames [from, to) only,
+// moving by motion(f).
+PartTrack grip(int frames, int from, int to, const std::function<Eigen::Isometry3d(int)>& motion) {
+  PartTrack t;
+  t.reference_frame = from;
+  t.model = concatenate(box_faces(Vector3d(0.04, 0.012, 0.045), Vector3d(0.02, 0.0, 0.07)),
+                        box_faces(Vector3d(0.009, 0.009, 0.02), Vector3d(0.0, 0.0, 0.03)));
+  for (int f = 0; f < frames; ++f) {
+    const bool seen = f >= from && f < to;
+    t.motion.push_back(seen ? motion(f) : Eigen::Isometry3d::Identity());
+    t.tracked.push_back(seen);
+    t.rmse.push_back(0.001), t.inliers.push_back(seen ? 1 : 0), t.conditioning.push_back(seen ? 1 : 0);
+  }
+  t.frames_tracked = to - from;
+  with_information(&t);
+  return t;
+}
+
+TEST(PipelineInfer, TheGripShowsTheTwistOrThePressTheRoundPartHides) {
+  // A round part whose registration only slips round its axis. The hand
+  // holds it in frames 20 to 130: twisting it 1.5 rad about its axis and
+  // back (a knob), or pressing it 8 mm in along the axis twice (a button).
+  // The grip's track tells the two apart; without it the slip is a turn.
+  const int frames = 150;
+  std::mt19937 rng(61);
+  std::normal_distribution<double> g(0, 0.0005);
+  auto noisy = [&](Eigen::Isometry3d T) {
+    T.translation() += Vector3d(g(rng), g(rng), g(rng));
+    return T;
+  };
+  // The fingers twist about an axis 0.2 rad off the knob's (they wobble
+  // on it): the joint's axis is the part's own symmetry axis, which its
+  // slipping registration gives, and the grip's twist about it its angle.
+  const Vector3d wobbly(std::sin(0.2), 0, std::cos(0.2));
+  const PartTrack twist = grip(frames, 20, 130, [&](int f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(1.5 * std::sin(kPi * (f - 20) / 110.0), wobbly).toRotationMatrix();
+    return noisy(T);
+  });
+  const PartTrack press = grip(frames, 20, 130, [&](int f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    if ((f >= 40 && f < 60) || (f >= 90 && f < 110)) T.translation() = Vector3d(0, 0, -0.008);
+    return noisy(T);
+  });
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) hand[f] = Vector3d(0, 0, 0.012);
+  const PartTrack part = slipping(frames, 62);
+
+  const JointEstimate knob = estimate_joint(part, hand, true, &twist);
+  EXPECT_EQ(knob.source, "grip");
+  EXPECT_EQ(knob.type, "revolute");
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(knob.axis.dot(Vector3d::UnitZ())))), 0.05);
+  EXPECT_LT(Eigen::Vector2d(knob.origin.x(), knob.origin.y()).norm(), 0.01);
+  EXPECT_NEAR(knob.range_hi - knob.range_lo, 1.5, 0.1);
+  ASSERT_EQ(static_cast<int>(knob.q.size()), frames);
+  EXPECT_NEAR(std::abs(knob.q[75] - knob.q[10]), 1.5, 0.1);  // held before the grasp
+
+  const JointEstimate button = estimate_joint(part, hand, true, &press);
+  EXPECT_EQ(button.source, "grip");
+  EXPECT_EQ(button.type, "prismatic");
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(button.axis.dot(Vector3d::UnitZ())))), 0.05);
+  EXPECT_NEAR(button.range_hi - button.range_lo, 0.008, 0.002);
+
+  // The grip only speaks for a part someone operates, and where the part's
+  // own track cannot: without it the slip is the knob's turn.
+  EXPECT_NE(estimate_joint(part, hand, false, &press).source, "grip");
+  const JointEstimate alone = estimate_joint(part, hand, true, nullptr);
+  EXPECT_EQ(alone.source, "part");
+  EXPECT_EQ(alone.type.substr(0, 4) == "cont" ? "revolute" : alone.type, "revolute");
+  // A door whose own track shows its turn keeps it, whatever the grip does.
+  const PartTrack door = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 63);
+  const JointEstimate opened = estimate_joint(door, hand, true, &press);
+  EXPECT_EQ(opened.source, "part");
+  EXPECT_EQ(opened.type, "revolute");
+}
+
+TEST(PipelineInfer, TheGripIsTheHandsPointsNearItsContactWhileItHolds) {
+  // Hand points in the world frame; the object frame is the world moved
+  // 1 m along x. Contacts in frames 1 and 2 only.
+  Observations obs;
+  obs.times = {0.0, 0.1, 0.2, 0.3};
+  Cloud hand;
+  for (double x : {0.0, 0.05, 0.09, 0.2, 0.5}) {
+    hand.points.push_back(Vector3d(x, 0, 0));
+    hand.normals.push_back(Vector3d::UnitZ());
+  }
+  obs.hand_clouds.assign(4, hand);
+  std::vector<Eigen::Isometry3d> to_object(4, Eigen::Isometry3d::Identity());
+  for (auto& T : to_object) T.translation() = Vector3d(1, 0, 0);
+  std::vector<Vector3d> contacts = no_hand(4);
+  contacts[1] = Vector3d(1.0, 0, 0);   // world (0, 0, 0)
+  contacts[2] = Vector3d(1.2, 0, 0);   // world (0.2, 0, 0)
+  const std::vector<Cloud> g = grip_clouds(obs, contacts, to_object);
+  ASSERT_EQ(g.size(), 4u);
+  EXPECT_EQ(g[0].size(), 0u);
+  EXPECT_EQ(g[3].size(), 0u);
+  ASSERT_EQ(g[1].size(), 3u);  // 0, 0.05, 0.09 (within kGripRadius of 0)
+  EXPECT_TRUE(g[1].has_normals());
+  ASSERT_EQ(g[2].size(), 1u);  // 0.2 alone: 0.09 lies 0.11 from it
+  EXPECT_EQ(g[2].points[0], Vector3d(0.2, 0, 0));
+  // No hand mask: no grip.
+  obs.hand_clouds.clear();
+  for (const Cloud& c : grip_clouds(obs, contacts, to_object)) EXPECT_EQ(c.size(), 0u);
 }
 
 // A small lever (6 x 1 x 1 cm) at its hinge end on the origin.

@@ -1,5 +1,7 @@
 // The part tracker (pipeline/infer/part_tracking.h) on made-up clouds: a
-// round part that stops showing its turn does not go on turning.
+// round part that stops showing its turn does not go on turning when the
+// tracker carries on only the motion it saw (the grip's tracking), and
+// does when it carries on every step (the parts' own).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -54,7 +56,9 @@ TEST(PipelineInferTracking, ARoundPartThatStopsShowingItsTurnStopsTurning) {
   std::vector<Cloud> clouds;
   for (int f = 0; f < frames; ++f) clouds.push_back(f < 3 ? knob(true, 0.1 * f) : knob(false, 0));
   const std::vector<Eigen::Isometry3d> to_object(frames, Eigen::Isometry3d::Identity());
-  const PartTrack t = track_clouds(clouds, to_object);
+  TrackOptions seen_only;
+  seen_only.carry_unseen_motion = false;
+  const PartTrack t = track_clouds(clouds, to_object, seen_only);
   ASSERT_EQ(t.reference_frame, 0);
   ASSERT_TRUE(t.tracked[2]);
   EXPECT_NEAR(Eigen::AngleAxisd(t.motion[2].linear()).angle(), 0.2, 0.02);
@@ -63,6 +67,10 @@ TEST(PipelineInferTracking, ARoundPartThatStopsShowingItsTurnStopsTurning) {
     EXPECT_LT(Eigen::AngleAxisd(t.motion[f].linear()).angle(), 0.35) << f;
     EXPECT_LT(t.motion[f].translation().norm(), 0.003) << f;
   }
+  // Carrying every step on, the turn runs on by 0.1 rad a frame.
+  const PartTrack carried = track_clouds(clouds, to_object);
+  ASSERT_TRUE(carried.tracked[10]);
+  EXPECT_NEAR(Eigen::AngleAxisd(carried.motion[10].linear()).angle(), 1.0, 0.05);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "pipeline/infer/ego_motion.h"
+#include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/hand_contacts.h"
 #include "pipeline/infer/joint_estimate.h"
 #include "pipeline/infer/part_tracking.h"
@@ -97,6 +98,10 @@ ojson joint_report(const JointEstimate& j) {
   r["bic"] = {{"fixed", j.bic_fixed}, {"prismatic", j.bic_prismatic}, {"revolute", j.bic_revolute}};
   if (j.has_part_track) r["from_part"] = fits(j.from_part);
   if (j.has_hand_track) r["from_hand"] = fits(j.from_hand);
+  if (j.has_grip_track) {
+    r["from_grip"] = fits(j.from_grip);
+    r["grip_visibility"] = j.grip_visibility;
+  }
   r["hand_samples"] = j.hand_samples;
   if (j.has_part_track) r["part_visibility"] = j.part_visibility;
   return r;
@@ -121,7 +126,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   auto t0 = Clock::now();
   Observations obs;
   if (!observe(sequence, options.observe, diags, progress, &obs)) return 1;
-  if (!options.use_hands) obs.hands.clear();
+  if (!options.use_hands) obs.hands.clear(), obs.hand_clouds.clear();
   {
     ojson s = stage("observations", since(t0));
     s["parts"] = obs.parts.size();
@@ -230,19 +235,57 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     for (const PartFrames& pf : obs.parts) roles.push_back(pf.role);
     keep_receptor_contacts(roles, &hand_points);
   }
+  auto operated = [&](int p) {  // as spec_role names receptors
+    const std::string& role = obs.parts[p].role;
+    return role == "receptor" || role == "receptor+effector";
+  };
+  const double contacts_seconds = since(t0);  // counted with the joints' estimation
+
+  // 4a. The grip: the hand's own points while it holds an operated part,
+  // tracked like a part (grip_track.h).
+  t0 = Clock::now();
+  std::vector<std::unique_ptr<PartTrack>> grips(obs.parts.size());
+  if (!obs.hand_clouds.empty()) {
+    std::vector<int> held;
+    for (int p : moving_parts) {
+      bool any = false;
+      for (const Eigen::Vector3d& h : hand_points[p]) any |= !std::isnan(h.x());
+      if (tracks[p] && operated(p) && any) held.push_back(p);
+    }
+    TrackOptions grip_tracking;
+    grip_tracking.carry_unseen_motion = false;  // a finger's roll is not a motion
+    std::atomic<size_t> next{0};
+    auto worker = [&]() {
+      for (size_t k = next++; k < held.size(); k = next++) {
+        const int p = held[k];
+        const std::vector<Cloud> clouds = grip_clouds(obs, hand_points[p], to_object);
+        grips[p] = std::make_unique<PartTrack>(track_clouds(clouds, to_object, grip_tracking));
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < std::max(1, options.observe.threads); ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+  }
+  stages.push_back(stage("grip_motion", since(t0)));
+  if (progress && !obs.hand_clouds.empty()) {
+    size_t held = 0;
+    for (const auto& g : grips) held += g != nullptr;
+    progress("infer: the hand's grip tracked on " + std::to_string(held) + " receptor(s)");
+  }
+
+  t0 = Clock::now();
   std::vector<JointEstimate> joints(obs.parts.size());
   for (int p : moving_parts) {
     if (!tracks[p]) continue;
-    const std::string& role = obs.parts[p].role;
-    const bool operated = role == "receptor" || role == "receptor+effector";  // as spec_role's receptors
-    joints[p] = estimate_joint(*tracks[p], hand_points[p], operated);
+    joints[p] = estimate_joint(*tracks[p], hand_points[p], operated(p), grips[p].get());
     if (joints[p].assumed_moving)
       diags.warning("E1059", meta_file, 0, 0, "/parts/" + obs.parts[p].name,
                     "part '" + obs.parts[p].name + "': the hand held it, but neither its own track nor the hand's shows it moving; it is taken as " +
                         joints[p].type + " (the likelier moving joint), with low confidence",
                     "film the part from where its motion shows, not hidden by the hand");
   }
-  stages.push_back(stage("articulation", since(t0)));
+  stages.push_back(stage("articulation", contacts_seconds + since(t0)));
   if (progress) progress("infer: joints estimated");
 
   // 5. Reconstruction.

@@ -325,7 +325,8 @@ Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
   return T;
 }
 
-JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points, bool operated) {
+JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points, bool operated,
+                             const PartTrack* grip) {
   JointEstimate j;
   const int n = static_cast<int>(track.motion.size());
   // The part's own track: the pose of its model's centroid per tracked
@@ -379,6 +380,20 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   j.hand_samples = static_cast<int>(hand_frames.size());
   if (j.has_part_track) j.from_part = estimate_articulation(part);
   if (j.has_hand_track) j.from_hand = estimate_articulation(hand);
+  // The grip's track, on the same runs of frames as the part's.
+  Track grip_typing;
+  Eigen::Vector3d grip_centre = Eigen::Vector3d::Zero();
+  if (operated && grip && grip->model.size() >= kMinModelPoints) {
+    grip_centre = centroid(grip->model);
+    std::vector<std::vector<int>> grip_frames;
+    grip_typing = part_samples(*grip, grip_centre, kPartBin, &grip_frames, true);
+    j.has_grip_track = static_cast<int>(grip_typing.size()) >= kMinSamples;
+    if (j.has_grip_track) {
+      j.from_grip = estimate_articulation(grip_typing);
+      if (j.from_grip.type != "fixed")
+        j.grip_visibility = visibility(grip->model, j.from_grip.type, j.from_grip.axis, j.from_grip.origin);
+    }
+  }
   if (!j.has_part_track && !j.has_hand_track) return j;
 
   // Which track speaks. The part's own motion, when it visibly moves
@@ -401,11 +416,20 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   const bool part_reliable = track.model.size() >= kMinModelPoints;
   const bool part_visible = j.has_part_track && part_reliable &&
                             (j.from_part.type == "fixed" || j.part_visibility >= kMinVisibility);
-  const bool part_decides = part_visible && j.from_part.type != "fixed";
-  const bool hand_decides = !part_decides && j.has_hand_track && j.from_hand.type != "fixed";
+  bool part_decides = part_visible && j.from_part.type != "fixed";
+  // The grip speaks where the part's own track cannot show the motion, or
+  // shows only a turn its registration can slip into, and its own motion
+  // shows on the hand's shape.
+  const bool part_may_slip =
+      part_decides && j.from_part.type == "revolute" && turn_a_slip_could_be(track.model, j.from_part);
+  const bool grip_decides = j.has_grip_track && j.from_grip.type != "fixed" && j.grip_visibility >= kMinVisibility &&
+                            (!part_decides || part_may_slip);
+  if (grip_decides) part_decides = false;
+  const bool hand_decides = !part_decides && !grip_decides && j.has_hand_track && j.from_hand.type != "fixed";
   std::string type = "fixed";
   const Articulation* decider = nullptr;
   if (part_decides) type = j.from_part.type, decider = &j.from_part;
+  else if (grip_decides) type = j.from_grip.type, decider = &j.from_grip;
   else if (hand_decides) type = j.from_hand.type, decider = &j.from_hand;
   else if (j.has_part_track) decider = &j.from_part;
   else if (j.has_hand_track) decider = &j.from_hand;
@@ -448,7 +472,40 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     for (int f : hand_frames) h[f] = hand_points[f];
     return smoothed(q_from_hand(j, h), 4);
   };
-  if (geometry_from_part) {
+  if (grip_decides && part_may_slip) {
+    // The part turns about an axis through itself that its shape barely
+    // shows: its symmetry axis, a knob's and a button's joint axis alike,
+    // which its slipping registration finds better than the grip's
+    // fingers do. The grip says which motion it is, and how far, along
+    // that axis: its turn about it or its slide along it, frame by frame.
+    std::vector<std::vector<int>> frames_one_by_one;
+    const Articulation a =
+        estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), "revolute");
+    j.source = "grip";
+    j.type = type;
+    j.axis = a.axis;
+    j.origin = a.origin;
+    for (size_t f = 0; f < grip->motion.size() && f < q.size(); ++f) {
+      if (!grip->tracked[f]) continue;
+      const Eigen::Isometry3d& m = grip->motion[f];
+      if (type == "prismatic") {
+        q[f] = (m * grip_centre - grip_centre).dot(j.axis);
+      } else {
+        Eigen::Quaterniond r(m.linear());
+        if (r.w() < 0) r.coeffs() = -r.coeffs();
+        q[f] = 2 * std::atan2(r.vec().dot(j.axis), r.w());  // the twist about the axis, (-pi, pi]
+      }
+    }
+  } else if (grip_decides) {
+    std::vector<std::vector<int>> frames_one_by_one;
+    const Articulation a = estimate_articulation_as(part_samples(*grip, grip_centre, 1, &frames_one_by_one), type);
+    j.source = "grip";
+    j.type = type;
+    j.axis = a.axis;
+    j.origin = a.origin;
+    for (size_t k = 0; k < frames_one_by_one.size() && k < a.q.size(); ++k)
+      for (int f : frames_one_by_one[k]) q[f] = a.q[k];
+  } else if (geometry_from_part) {
     std::vector<std::vector<int>> frames_one_by_one;
     const Articulation a = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), type);
     part_frames = std::move(frames_one_by_one);
@@ -488,8 +545,9 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.origin = a.origin;
     q = q_of_hand();
   }
-  // The part's track gave q: the hand's is the templates' second candidate.
-  if (j.source == "part" && j.has_hand_track) j.q_hand = q_of_hand();
+  // The part's track or the grip's gave q: the hand's points' is the
+  // templates' second candidate.
+  if (j.source != "hand" && j.has_hand_track) j.q_hand = q_of_hand();
   // q = 0 where the part was first seen; the model's reference frame maps
   // there by the joint itself.
   double q_first = kNaN;

@@ -1,12 +1,14 @@
 // efc infer, stage 4: each part's joint, from its own motion and the hand's.
-// Two tracks feed the articulation estimator (pipeline/articulation, BIC
-// model selection): the part's registered poses (stage 3) and the hand's
-// contact points in the frames the hand holds the part. The part's own
-// track decides when it can: when its points show the motion (or show that
-// there is none). Where they cannot (a round knob whose turn the depth does
-// not resolve, a part hidden under the hand in most frames), the hand's
-// track decides. A part neither shows moving is fixed. Both tracks' scores,
-// and their sum, are in the report.
+// Three tracks feed the articulation estimator (pipeline/articulation, BIC
+// model selection): the part's registered poses (stage 3), the grip's (the
+// hand's own points registered while it holds the part, grip_track.h) and
+// the hand's contact points in the frames the hand holds the part. The
+// part's own track decides when it can: when its points show the motion (or
+// show that there is none). Where they cannot (a round knob whose turn the
+// depth does not resolve, a button hidden under the finger), the grip
+// decides, and where it shows nothing either, the hand's points. A part
+// none shows moving is fixed. The tracks' scores, and the part's and the
+// hand's points' sum, are in the report.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -27,16 +29,16 @@ struct JointEstimate {
   // Per frame: the joint position (q = 0 in the first frame the part was
   // seen), NaN before it was; empty for fixed.
   std::vector<double> q;
-  // Where q came from the part's own track and the hand held the part: the
-  // same from the hand's contacts alone (the chosen axis; q = 0 at the
-  // first contact, held between grasps), NaN before. Empty otherwise. The
-  // templates' second candidate for the receptor's state.
+  // Where q came from the part's own track or the grip's and the hand held
+  // the part: the same from the hand's contacts alone (the chosen axis; q =
+  // 0 at the first contact, held between grasps), NaN before. Empty
+  // otherwise. The templates' second candidate for the receptor's state.
   std::vector<double> q_hand;
   // Maps the track's reference configuration to q = 0.
   Eigen::Isometry3d reference_to_zero = Eigen::Isometry3d::Identity();
-  std::string source = "none";  // which track gave the geometry: part, hand, none
-  bool has_part_track = false, has_hand_track = false;
-  Articulation from_part, from_hand;
+  std::string source = "none";  // which track gave the geometry: part, grip, hand, none
+  bool has_part_track = false, has_hand_track = false, has_grip_track = false;
+  Articulation from_part, from_hand, from_grip;
   double bic_fixed = 0, bic_prismatic = 0, bic_revolute = 0;  // fused
   double confidence = 0;  // posterior of the chosen type under the fused BIC
   // A receptor the hand held whose motion neither track shows: moving by
@@ -55,6 +57,8 @@ struct JointEstimate {
   int hand_samples = 0;
   // How much of the part track's motion its shape can show (visibility()).
   double part_visibility = 0;
+  // The same for the grip's track (grip_track.h) and its motion.
+  double grip_visibility = 0;
 };
 
 // How visible a joint's motion is on a part's surface: the share of the
@@ -95,8 +99,13 @@ Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int 
 // it holds this part (NaN elsewhere). `operated`: someone may move the part
 // (a receptor's role); an effector or another part only its function or
 // nothing moves, so a turn its registration can slip into is not taken for
-// a motion there (JointEstimate::turn_taken_for_slip).
+// a motion there (JointEstimate::turn_taken_for_slip). `grip`: the track of
+// the hand's own points while it holds the part (grip_track.h), or null.
+// It speaks for an operated part whose own track cannot: one whose motion
+// its shape does not show, or whose turn is one its registration can slip
+// into (a round knob's, a round button's), since a hand holding a part
+// moves with it and its fingers show a twist or a press the part hides.
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points,
-                             bool operated = true);
+                             bool operated = true, const PartTrack* grip = nullptr);
 
 }  // namespace efc::pipeline

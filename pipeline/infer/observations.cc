@@ -119,6 +119,8 @@ bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagn
     if ((role == "hand" || name == "hand") && has_folder(name)) hand_mask = name;
   if (hand_mask.empty() && has_folder("hand")) hand_mask = "hand";
   out->background.assign(meta.frames, Cloud{});
+  out->hand_clouds.clear();
+  if (!hand_mask.empty() && !out->hands.empty()) out->hand_clouds.assign(meta.frames, Cloud{});
 
   // Frames in parallel: each worker takes the next frame; PNG decoding is
   // most of the time here.
@@ -165,15 +167,31 @@ bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagn
         pf.clouds[f] = std::move(c);
       }
       if (failed) break;
-      if (options.background) {
-        if (!hand_mask.empty()) {
-          seq::Image8 mask;
-          if (!sequence.read_mask(hand_mask, f, local, &mask)) {
-            failed = true;
-            break;
-          }
-          claim(mask);
+      if (!hand_mask.empty() && (options.background || !out->hand_clouds.empty())) {
+        seq::Image8 mask;
+        if (!sequence.read_mask(hand_mask, f, local, &mask)) {
+          failed = true;
+          break;
         }
+        claim(mask);
+        // The hand's own points near its contact point, every pixel (a
+        // fingertip on a button is a few dozen of them), for the grip.
+        if (!out->hand_clouds.empty() && f < static_cast<int>(out->hands.size()) && out->hands[f].seen) {
+          BackprojectOptions hand_bp = bp;
+          hand_bp.stride = 1;
+          Cloud all = backproject(depth, meta.depth_scale, meta.intrinsics, &mask, hand_bp);
+          transform_cloud(out->camera_to_world[f], &all);
+          const Eigen::Vector3d at(out->hands[f].p[0], out->hands[f].p[1], out->hands[f].p[2]);
+          Cloud& near = out->hand_clouds[f];
+          for (size_t i = 0; i < all.size(); ++i) {
+            if ((all.points[i] - at).norm() >= kHandCloudRadius) continue;
+            near.points.push_back(all.points[i]);
+            if (all.has_normals()) near.normals.push_back(all.normals[i]);
+          }
+          thin(&near, options.max_points_moving);
+        }
+      }
+      if (options.background) {
         for (uint8_t& v : claimed.pixels) v = v ? 0 : 255;  // now: the unclaimed pixels
         BackprojectOptions room = bp;
         room.stride = std::max(1, options.background_stride);

@@ -38,8 +38,17 @@ struct Observations {
   // its normal; the floor and the wall beside it can. Empty with the motion
   // fallback (no masks, so no telling the room from the object).
   std::vector<Cloud> background;
+  // The hand's own points per frame (world frame of poses.txt): its mask's
+  // pixels within kHandCloudRadius of its hands.txt point, for the grip's
+  // track (grip_track.h). Empty without a hand mask or hands.txt; an empty
+  // cloud where the hand is not seen.
+  std::vector<Cloud> hand_clouds;
   bool motion_masks = false;  // the masks came from the motion fallback
 };
+
+// The hand's points kept around its hands.txt point: the grip's radius
+// (kGripRadius, grip_track.h) and the hand detector's error on top.
+constexpr double kHandCloudRadius = 0.15;
 
 struct ObserveOptions {
   int stride = 2;                 // back-project every stride-th pixel in x and y

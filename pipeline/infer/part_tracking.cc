@@ -29,9 +29,7 @@ constexpr size_t kMinPoints = 12;
 // that the registration of its last frame could see: its twist about that
 // registration's Hessian centre, in the Hessian's normalised coordinates
 // (IcpResult), keeps only the components along directions constrained
-// above `threshold`. A constant-velocity start extrapolates this: a motion
-// along a direction the data cannot fix (a round knob's spin, a finger's
-// roll) was never measured, and carried on frame after frame it runs away.
+// above `threshold` (TrackOptions::carry_unseen_motion).
 Eigen::Isometry3d seen_part_of_step(const Eigen::Isometry3d& step, const Eigen::Matrix<double, 6, 6>& hessian,
                                     const Eigen::Vector3d& centre, double scale, double threshold) {
   using Vec6 = Eigen::Matrix<double, 6, 1>;
@@ -65,7 +63,7 @@ Cloud in_object(const std::vector<Cloud>& clouds, int frame, const std::vector<E
 // `seeded`: pass 2. A frame registered in pass 1 starts from its pass-1
 // motion, fine alignment only; the others are tracked as in pass 1.
 void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::Isometry3d>& to_object,
-                     const Cloud& model, bool seeded, PartTrack* out) {
+                     const Cloud& model, bool seeded, const TrackOptions& options, PartTrack* out) {
   const std::vector<bool> seed_ok = out->tracked;
   std::vector<Eigen::Isometry3d> seed(out->motion.size());
   for (size_t f = 0; f < seed.size(); ++f) seed[f] = out->motion[f].inverse();
@@ -96,10 +94,11 @@ void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::
       starts.push_back(to_model[last_good]);
       // Constant velocity: the last registered step again, per frame.
       if (before_last_good >= 0 && std::abs(last_good - before_last_good) == 1) {
-        const Eigen::Isometry3d step = to_model[last_good] * to_model[before_last_good].inverse();
-        const Eigen::Isometry3d seen = seen_part_of_step(step, out->hessian[last_good], out->hessian_center[last_good],
-                                                         out->hessian_scale[last_good], kTrackDegenerateThreshold);
-        starts.insert(starts.begin(), seen * to_model[last_good]);
+        Eigen::Isometry3d step = to_model[last_good] * to_model[before_last_good].inverse();
+        if (!options.carry_unseen_motion)
+          step = seen_part_of_step(step, out->hessian[last_good], out->hessian_center[last_good],
+                                   out->hessian_scale[last_good], kTrackDegenerateThreshold);
+        starts.insert(starts.begin(), step * to_model[last_good]);
       }
     }
     if (!from_seed) starts.push_back(Eigen::Isometry3d::Identity());  // the reference configuration
@@ -192,7 +191,8 @@ PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen:
   return out;
 }
 
-PartTrack track_clouds(const std::vector<Cloud>& clouds, const std::vector<Eigen::Isometry3d>& to_object) {
+PartTrack track_clouds(const std::vector<Cloud>& clouds, const std::vector<Eigen::Isometry3d>& to_object,
+                       const TrackOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   PartTrack out;
   const int n = static_cast<int>(clouds.size());
@@ -209,7 +209,7 @@ PartTrack track_clouds(const std::vector<Cloud>& clouds, const std::vector<Eigen
 
   // Pass 1: onto the reference frame's own points.
   Cloud model = in_object(clouds, out.reference_frame, to_object);
-  register_frames(clouds, to_object, model, false, &out);
+  register_frames(clouds, to_object, model, false, options, &out);
   // Pass 2: onto every tracked frame fused in the reference configuration.
   // The model's resolution follows the part's size: 3 mm for a knob, up to
   // 1 cm for a door (a finer model of a large part only slows ICP).
@@ -228,7 +228,7 @@ PartTrack track_clouds(const std::vector<Cloud>& clouds, const std::vector<Eigen
   Cloud fused = fusion.fused();
   if (fused.size() >= model.size() && fused.has_normals()) {
     model = std::move(fused);
-    register_frames(clouds, to_object, model, true, &out);
+    register_frames(clouds, to_object, model, true, options, &out);
   }
   out.model = std::move(model);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -50,9 +50,21 @@ struct PartTrack {
 
 // to_object[f] maps frame f's points (world of poses.txt) into the object frame.
 PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object);
+struct TrackOptions {
+  // Each frame's registration starts from the last one's motion carried on
+  // a step (constant velocity). true: the whole step, also along the
+  // directions the last registration left alone: a drawer pulled fast,
+  // whose slide its faces show only now and then, keeps moving. false: only
+  // what the last registration saw; along a direction the shape cannot show
+  // (a finger's roll, a round knob's spin) a step was never measured, and
+  // carried on frame after frame it runs away (the grip's track).
+  bool carry_unseen_motion = true;
+};
+
 // The same for any rigid thing seen frame by frame: clouds[f] in the world
 // frame of poses.txt (empty where unseen). `part` is left -1.
-PartTrack track_clouds(const std::vector<Cloud>& clouds, const std::vector<Eigen::Isometry3d>& to_object);
+PartTrack track_clouds(const std::vector<Cloud>& clouds, const std::vector<Eigen::Isometry3d>& to_object,
+                       const TrackOptions& options = {});
 
 // The part's points of frame f in the object frame.
 Cloud part_cloud_in_object(const Observations& obs, int part, int frame,

@@ -1,0 +1,34 @@
+// efc infer, between stages 3 and 4: the hand's own motion while it holds a
+// part. hands.txt gives one point per frame, with a hand detector's error
+// (~1 cm): a button's 5 mm press or a knob's twist about its centre hardly
+// moves it. The hand's depth points around that point do: a hand holding a
+// part moves rigidly with it, so its fingers and palm, registered frame to
+// frame like a part (track_clouds()), turn with a knob and slide with a
+// button, whose own points are hidden under the hand or too round to show
+// the motion. This is the grip's track: the hand's points near the contact,
+// in the frames the hand holds the part.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include <vector>
+
+#include "pipeline/infer/observations.h"
+#include "pipeline/infer/part_tracking.h"
+
+namespace efc::pipeline {
+
+// The hand's points taken for the grip: within this distance of its contact
+// point. The fingers and the front of the palm (the palm's centre sits some
+// 7 cm behind the fingertips), not the wrist and the arm, which bend.
+constexpr double kGripRadius = 0.10;
+
+// contacts[f]: the hand's contact point with the part in the object frame in
+// the frames it holds it (NaN elsewhere; assign_hand_contacts()). Returns,
+// per frame, the hand's points (Observations::hand_clouds, world frame)
+// within kGripRadius of that point; empty where the hand does not hold the
+// part or the recording has no hand mask.
+std::vector<Cloud> grip_clouds(const Observations& obs, const std::vector<Eigen::Vector3d>& contacts,
+                               const std::vector<Eigen::Isometry3d>& to_object);
+
+}  // namespace efc::pipeline
