@@ -34,25 +34,27 @@ Cloud ring(double radius, double height) {
   return c;
 }
 
-// A door-like panel: the faces of a 0.6 x 0.02 x 0.8 box.
-Cloud panel() {
+// The faces of a box (half sizes `half`) centred at `centre`, outward normals.
+Cloud box_faces(const Vector3d& half, const Vector3d& centre, int divisions = 8) {
   Cloud c;
-  const Vector3d half(0.3, 0.01, 0.4);
   for (int axis = 0; axis < 3; ++axis)
     for (int side : {-1, 1})
-      for (int i = 0; i <= 10; ++i)
-        for (int j = 0; j <= 10; ++j) {
+      for (int i = 0; i <= divisions; ++i)
+        for (int j = 0; j <= divisions; ++j) {
           Vector3d p, n = Vector3d::Zero();
           const int u = (axis + 1) % 3, v = (axis + 2) % 3;
           p[axis] = side * half[axis];
-          p[u] = -half[u] + 2 * half[u] * i / 10;
-          p[v] = -half[v] + 2 * half[v] * j / 10;
+          p[u] = -half[u] + 2 * half[u] * i / divisions;
+          p[v] = -half[v] + 2 * half[v] * j / divisions;
           n[axis] = side;
-          c.points.push_back(p + Vector3d(0.3, 0, 0.4));
+          c.points.push_back(p + centre);
           c.normals.push_back(n);
         }
   return c;
 }
+
+// A door-like panel: the faces of a 0.6 x 0.02 x 0.8 box.
+Cloud panel() { return box_faces(Vector3d(0.3, 0.01, 0.4), Vector3d(0.3, 0, 0.4), 10); }
 
 // A part track whose motion is a turn of q(f) about `axis` through `origin`.
 PartTrack turning(const Cloud& model, const Vector3d& axis, const Vector3d& origin, double amplitude, int frames,
@@ -267,25 +269,6 @@ TEST(PipelineInfer, AReceptorTheHandHeldMovedEvenWhenNothingShowsIt) {
   const JointEstimate alone = estimate_joint(t, no_hand(frames));
   EXPECT_EQ(alone.type, "fixed");
   EXPECT_FALSE(alone.assumed_moving);
-}
-
-// The faces of a box (half sizes `half`) centred at `centre`, outward normals.
-Cloud box_faces(const Vector3d& half, const Vector3d& centre) {
-  Cloud c;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int side : {-1, 1})
-      for (int i = 0; i <= 8; ++i)
-        for (int j = 0; j <= 8; ++j) {
-          Vector3d p, n = Vector3d::Zero();
-          const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-          p[axis] = side * half[axis];
-          p[u] = -half[u] + 2 * half[u] * i / 8;
-          p[v] = -half[v] + 2 * half[v] * j / 8;
-          n[axis] = side;
-          c.points.push_back(p + centre);
-          c.normals.push_back(n);
-        }
-  return c;
 }
 
 // A round button or knob's track (the ridged button, axis z) whose

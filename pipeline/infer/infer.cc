@@ -245,8 +245,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   // tracked like a part (grip_track.h).
   t0 = Clock::now();
   std::vector<std::unique_ptr<PartTrack>> grips(obs.parts.size());
+  std::vector<int> held;  // the operated parts the hand holds in some frame
   if (!obs.hand_clouds.empty()) {
-    std::vector<int> held;
     for (int p : moving_parts) {
       bool any = false;
       for (const Eigen::Vector3d& h : hand_points[p]) any |= !std::isnan(h.x());
@@ -268,11 +268,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     for (std::thread& t : pool) t.join();
   }
   stages.push_back(stage("grip_motion", since(t0)));
-  if (progress && !obs.hand_clouds.empty()) {
-    size_t held = 0;
-    for (const auto& g : grips) held += g != nullptr;
-    progress("infer: the hand's grip tracked on " + std::to_string(held) + " receptor(s)");
-  }
+  if (progress && !obs.hand_clouds.empty())
+    progress("infer: the hand's grip tracked on " + std::to_string(held.size()) + " receptor(s)");
 
   t0 = Clock::now();
   std::vector<JointEstimate> joints(obs.parts.size());

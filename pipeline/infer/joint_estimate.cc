@@ -496,26 +496,20 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
         q[f] = 2 * std::atan2(r.vec().dot(j.axis), r.w());  // the twist about the axis, (-pi, pi]
       }
     }
-  } else if (grip_decides) {
-    std::vector<std::vector<int>> frames_one_by_one;
-    const Articulation a = estimate_articulation_as(part_samples(*grip, grip_centre, 1, &frames_one_by_one), type);
-    j.source = "grip";
+  } else if (grip_decides || geometry_from_part) {
+    // The chosen model fitted frame by frame on the track that decided.
+    const PartTrack& decided = grip_decides ? *grip : track;
+    std::vector<std::vector<int>> frames;
+    const Articulation a = estimate_articulation_as(
+        part_samples(decided, grip_decides ? grip_centre : model_centre, 1, &frames), type);
+    j.source = grip_decides ? "grip" : "part";
     j.type = type;
     j.axis = a.axis;
     j.origin = a.origin;
-    for (size_t k = 0; k < frames_one_by_one.size() && k < a.q.size(); ++k)
-      for (int f : frames_one_by_one[k]) q[f] = a.q[k];
-  } else if (geometry_from_part) {
-    std::vector<std::vector<int>> frames_one_by_one;
-    const Articulation a = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), type);
-    part_frames = std::move(frames_one_by_one);
-    j.source = "part";
-    j.type = type;
-    j.axis = a.axis;
-    j.origin = a.origin;
-    for (size_t k = 0; k < part_frames.size() && k < a.q.size(); ++k)
-      for (int f : part_frames[k]) q[f] = a.q[k];
-    if (type == "revolute" && slides_under_a_slip(track.model, j.from_part, a)) {
+    for (size_t k = 0; k < frames.size() && k < a.q.size(); ++k)
+      for (int f : frames[k]) q[f] = a.q[k];
+    // The slip rules read the part's own track.
+    if (!grip_decides && type == "revolute" && slides_under_a_slip(track.model, j.from_part, a)) {
       j.type = "prismatic";
       j.slide_over_turn = true;
       size_t peak = 0;
@@ -524,9 +518,9 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       const double sign = !a.slide.empty() && a.slide[peak] < 0 ? -1.0 : 1.0;
       j.axis = sign * a.slide_axis;
       std::fill(q.begin(), q.end(), kNaN);
-      for (size_t k = 0; k < part_frames.size() && k < a.slide.size(); ++k)
-        for (int f : part_frames[k]) q[f] = sign * a.slide[k];
-    } else if (type == "revolute" && !operated && !j.has_hand_track && turn_a_slip_could_be(track.model, a)) {
+      for (size_t k = 0; k < frames.size() && k < a.slide.size(); ++k)
+        for (int f : frames[k]) q[f] = sign * a.slide[k];
+    } else if (!grip_decides && type == "revolute" && !operated && !j.has_hand_track && turn_a_slip_could_be(track.model, a)) {
       // Nobody operates it, and the turn is one its registration can slip
       // into (a round LED, a burner, a grille's disc): the turn is the slip
       // and the part stays where it is. A driven lid or door turns about a

@@ -14,14 +14,13 @@
 
 namespace efc::pipeline {
 
-Cloud part_cloud_in_object(const Observations& obs, int part, int frame,
-                           const std::vector<Eigen::Isometry3d>& to_object) {
-  Cloud c = obs.parts[part].clouds[frame];
+namespace {
+
+Cloud in_object(const std::vector<Cloud>& clouds, int frame, const std::vector<Eigen::Isometry3d>& to_object) {
+  Cloud c = clouds[frame];
   transform_cloud(to_object[frame], &c);
   return c;
 }
-
-namespace {
 
 constexpr size_t kMinPoints = 12;
 
@@ -51,12 +50,6 @@ Eigen::Isometry3d seen_part_of_step(const Eigen::Isometry3d& step, const Eigen::
   if (w.norm() > 0) out.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
   out.translation() = centre + kept.tail<3>() - out.linear() * centre;
   return out;
-}
-
-Cloud in_object(const std::vector<Cloud>& clouds, int frame, const std::vector<Eigen::Isometry3d>& to_object) {
-  Cloud c = clouds[frame];
-  transform_cloud(to_object[frame], &c);
-  return c;
 }
 
 // ICP maps frame points onto the model: the inverse of the part's motion.
@@ -184,6 +177,11 @@ int reference_frame(const std::vector<Cloud>& clouds, const std::vector<Eigen::I
 }
 
 }  // namespace
+
+Cloud part_cloud_in_object(const Observations& obs, int part, int frame,
+                           const std::vector<Eigen::Isometry3d>& to_object) {
+  return in_object(obs.parts[part].clouds, frame, to_object);
+}
 
 PartTrack track_part(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object) {
   PartTrack out = track_clouds(obs.parts[part].clouds, to_object);
