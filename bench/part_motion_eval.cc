@@ -8,18 +8,23 @@
 // suite folder (every */seq inside). Each sequence is observed and its
 // camera registered as efc infer does it; then every part with a joint in
 // truth/spec.json is tracked (track_part) in the refined world frame and its
-// joint estimated (estimate_joint, with the hand's contacts). The true motion
+// joint estimated (estimate_joint, with the hand's contacts and, for a
+// receptor the hand holds, the grip's track, as efc infer does). The true motion
 // of the part from the track's reference frame to frame f follows from
 // truth/joints.csv and the true joints (chained through moving parents).
 // Per part, one line: the true joint type and travel (max rotation deg, max
 // displacement of the part's centre mm), the share of frames tracked, the
 // median and 90th percentile over tracked frames of the rotation error (deg)
 // and of the centre's position error (mm), then the part track's type, the
-// hand track's type and the type chosen (x: not the true type; revolute and
-// continuous count as one, as efc eval counts them); last, how many were
-// typed right. The refined world differs from the true one by a few
-// millimetres (ego_motion_eval), which sets the floor. --part NAME: only that
-// part; --frames: every frame's true and tracked motion too.
+// hand track's, the grip's and the type chosen (x: not the true type;
+// revolute and continuous count as one, as efc eval counts them); last, how
+// many were typed right. The refined world differs from the true one by a
+// few millimetres (ego_motion_eval), which sets the floor. --part NAME: only
+// that part; --frames: every frame's true and tracked motion too, the
+// tracked displacement along the true axis (of the centre, and of the part
+// track's own hinge axis point nearest it, which a spin about that axis
+// leaves in place: a round button's press shows there under any spin), and
+// the grip's twist about the true axis and slide along it.
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -30,6 +35,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -37,6 +43,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pipeline/infer/ego_motion.h"
+#include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/hand_contacts.h"
 #include "pipeline/infer/joint_estimate.h"
 #include "pipeline/infer/observations.h"
@@ -147,8 +154,8 @@ int main(int argc, char** argv) {
     std::cerr << usage;
     return 1;
   }
-  std::printf("%-30s %-14s %-10s %6s %6s %5s %11s %11s  %-10s %-10s %-10s\n", "sequence", "part", "truth",
-              "deg", "mm", "trk%", "deg med/90", "mm med/90", "from part", "from hand", "chosen");
+  std::printf("%-30s %-14s %-10s %6s %6s %5s %11s %11s  %-10s %-10s %-10s %-10s\n", "sequence", "part", "truth",
+              "deg", "mm", "trk%", "deg med/90", "mm med/90", "from part", "from hand", "from grip", "chosen");
   int parts_total[2] = {0, 0}, typed_right[2] = {0, 0};  // [0] moving joints, [1] fixed parts
   for (const fs::path& dir : sequences) {
     efc::Diagnostics diags;
@@ -198,14 +205,58 @@ int main(int argc, char** argv) {
     std::vector<Eigen::Vector3d> hand(n, Eigen::Vector3d::Constant(std::nan("")));
     for (int f = 0; f < n && f < static_cast<int>(obs.hands.size()); ++f)
       if (obs.hands[f].seen) hand[f] = Eigen::Vector3d(obs.hands[f].p[0], obs.hands[f].p[1], obs.hands[f].p[2]);
-    const auto hand_points = efc::pipeline::assign_hand_contacts(hand, tracked);
+    auto hand_points = efc::pipeline::assign_hand_contacts(hand, tracked);
+    // As efc infer: only receptors keep the hand's contacts, and the hand's
+    // own points near its contact (the grip) are tracked while it holds one.
+    std::vector<std::string> roles;
+    for (const auto& pf : obs.parts) roles.push_back(pf.role);
+    efc::pipeline::keep_receptor_contacts(roles, &hand_points);
+    auto operated = [&](int p) { return roles[p] == "receptor" || roles[p] == "receptor+effector"; };
+    std::vector<std::unique_ptr<efc::pipeline::PartTrack>> grips(obs.parts.size());
+    if (!obs.hand_clouds.empty()) {
+      efc::pipeline::TrackOptions grip_tracking;
+      grip_tracking.carry_unseen_motion = false;
+      for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
+        bool held = false;
+        for (const Eigen::Vector3d& h : hand_points[p]) held |= !std::isnan(h.x());
+        if (tracks[p] && operated(p) && held)
+          grips[p] = std::make_unique<efc::pipeline::PartTrack>(efc::pipeline::track_clouds(
+              efc::pipeline::grip_clouds(obs, hand_points[p], to_world), to_world, grip_tracking));
+      }
+    }
 
     for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
       if (!tracks[p]) continue;
       const efc::pipeline::PartTrack& track = *tracks[p];
       const std::string& name = obs.parts[p].name;
       const std::string true_type = joints[name].type;
-      const efc::pipeline::JointEstimate est = efc::pipeline::estimate_joint(track, hand_points[p]);
+      const efc::pipeline::PartTrack* grip = grips[p].get();
+      const efc::pipeline::JointEstimate est =
+          efc::pipeline::estimate_joint(track, hand_points[p], operated(p), grip);
+      // The true axis in the world frame and the grip's centre: the grip's
+      // twist about that axis and its slide along it, per frame (--frames).
+      const Eigen::Vector3d true_axis = (object_to_world.linear() * joints[name].axis).normalized();
+      const Eigen::Vector3d grip_centre =
+          grip && grip->model.size() ? efc::pipeline::centroid(grip->model) : Eigen::Vector3d::Zero();
+      // The part's own hinge axis point nearest its centroid: a spin about
+      // that axis leaves it where it is.
+      Eigen::Vector3d hinge_point = efc::pipeline::centroid(track.model);
+      if (est.has_part_track && est.from_part.type == "revolute") {
+        const Eigen::Vector3d a = est.from_part.axis.normalized(), o = est.from_part.origin;
+        hinge_point = o + (hinge_point - o).dot(a) * a;
+      }
+      auto grip_text = [&](int f) {
+        char buf[96] = "";
+        if (grip && f < static_cast<int>(grip->tracked.size()) && grip->tracked[f]) {
+          const Eigen::Isometry3d& g = grip->motion[f];
+          Eigen::Quaterniond r(g.linear());
+          if (r.w() < 0) r.coeffs() = -r.coeffs();
+          std::snprintf(buf, sizeof buf, "  grip twist %6.1f deg slide %6.1f mm",
+                        2 * std::atan2(r.vec().dot(true_axis), r.w()) * kDeg,
+                        1000 * (g * grip_centre - grip_centre).dot(true_axis));
+        }
+        return std::string(buf);
+      };
       // As efc eval scores it: revolute and continuous are one type.
       auto turns = [](const std::string& t) { return t == "revolute" || t == "continuous"; };
       const bool right = est.type == true_type || (turns(est.type) && turns(true_type));
@@ -225,29 +276,33 @@ int main(int argc, char** argv) {
           travel_pos = std::max(travel_pos, 1000 * (truth * centre_world - centre_world).norm());
           if (!track.tracked[f]) {
             if (per_frame)
-              std::printf("  %3d true %6.1f deg %6.1f mm  untracked (%zu points, inl %.2f)\n", f,
+              std::printf("  %3d true %6.1f deg %6.1f mm  untracked (%zu points, inl %.2f)%s\n", f,
                           Eigen::AngleAxisd(truth.rotation()).angle() * kDeg,
                           1000 * (truth * centre_world - centre_world).norm(), obs.parts[p].clouds[f].size(),
-                          track.inliers[f]);
+                          track.inliers[f], grip_text(f).c_str());
             continue;
           }
           const Eigen::Isometry3d& m = track.motion[f];
           if (per_frame)
-            std::printf("  %3d true %6.1f deg %6.1f mm  tracked %6.1f deg %6.1f mm  err %5.1f mm  inl %.2f cond %.3f\n", f,
+            std::printf("  %3d true %6.1f deg %6.1f mm  tracked %6.1f deg %6.1f mm (%6.1f along the axis; hinge point %5.1f mm, %5.1f along)  err %5.1f mm  inl %.2f cond %.3f%s\n", f,
                         Eigen::AngleAxisd(truth.rotation()).angle() * kDeg,
                         1000 * (truth * centre_world - centre_world).norm(),
                         Eigen::AngleAxisd(m.rotation()).angle() * kDeg, 1000 * (m * centre_world - centre_world).norm(),
-                        1000 * (m * centre_world - truth * centre_world).norm(), track.inliers[f], track.conditioning[f]);
+                        1000 * (m * centre_world - centre_world).dot(true_axis),
+                        1000 * (m * hinge_point - hinge_point).norm(), 1000 * (m * hinge_point - hinge_point).dot(true_axis),
+                        1000 * (m * centre_world - truth * centre_world).norm(), track.inliers[f], track.conditioning[f],
+                        grip_text(f).c_str());
           rot_err.push_back(Eigen::AngleAxisd(m.rotation() * truth.rotation().transpose()).angle() * kDeg);
           pos_err.push_back(1000 * (m * centre_world - truth * centre_world).norm());
         }
       }
-      std::printf("%-30s %-14s %-10s %6.1f %6.1f %5.0f %5.2f/%5.2f %5.1f/%5.1f  %-10s %-10s %-10s%s\n",
+      std::printf("%-30s %-14s %-10s %6.1f %6.1f %5.0f %5.2f/%5.2f %5.1f/%5.1f  %-10s %-10s %-10s %-10s%s\n",
                   dir.parent_path().filename().string().substr(0, 30).c_str(), name.substr(0, 14).c_str(),
                   true_type.c_str(), travel_rot, travel_pos, 100.0 * track.frames_tracked / std::max(1, n),
                   percentile(rot_err, 0.5), percentile(rot_err, 0.9), percentile(pos_err, 0.5),
                   percentile(pos_err, 0.9), est.has_part_track ? est.from_part.type.c_str() : "-",
-                  est.has_hand_track ? est.from_hand.type.c_str() : "-", est.type.c_str(), right ? "" : "  x");
+                  est.has_hand_track ? est.from_hand.type.c_str() : "-",
+                  est.has_grip_track ? est.from_grip.type.c_str() : "-", est.type.c_str(), right ? "" : "  x");
       std::fflush(stdout);
     }
   }
