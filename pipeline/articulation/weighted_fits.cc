@@ -285,6 +285,101 @@ double solve_with_scale(M* model, Weighted* w) {
   return weighted_cost(*model, *w);
 }
 
+// A hinge that also slides along its axis (HingeFit::slide). u[i] is
+// sample i's whitened residual along the axis (unit direction), jn[i] the
+// whitened length of a unit slide there (0: the sample says nothing). The
+// residual is linear in the slide, so each sample's best slide and what it
+// gains (-2 log L) are closed-form. A sample takes its slide only where the
+// gain pays for naming it (log(6n), as a coordinate costs); the slide as a
+// whole costs one more parameter. A slide from rest goes one way (a button
+// pressed in, a plunger pulled out), so only the samples on one side count,
+// the side that gains more: a tracker's slips along the axis go both ways
+// and split their gain.
+struct AxisSlide {
+  std::vector<double> slide;  // m along the axis per sample, 0 at rest
+  double saved = 0;           // the gains of the side kept, less their coordinates' cost
+};
+
+// The slide against a rest level and a noise scale (of u); `held_only`:
+// only slides on two consecutive samples or more count.
+AxisSlide axis_slide(const std::vector<double>& u, const std::vector<double>& jn, double rest, double sigma,
+                     bool held_only) {
+  const size_t n = u.size();
+  const double per = std::log(6.0 * n);
+  AxisSlide out;
+  out.slide.assign(n, 0.0);
+  std::vector<double> gain(n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    if (!(jn[i] > 0)) continue;
+    const double d = (u[i] - rest) / sigma;
+    if (d * d <= per) continue;
+    gain[i] = d * d - per;
+    out.slide[i] = (u[i] - rest) / jn[i];
+  }
+  double saved[2] = {0, 0};  // negative, positive side
+  std::vector<double> kept = out.slide;
+  for (size_t i = 0; i < n; ++i) {
+    if (out.slide[i] == 0) continue;
+    const bool side = out.slide[i] > 0;
+    auto same = [&](size_t k) { return out.slide[k] != 0 && (out.slide[k] > 0) == side; };
+    if (held_only && !((i > 0 && same(i - 1)) || (i + 1 < n && same(i + 1)))) {
+      kept[i] = 0;
+      continue;
+    }
+    saved[side] += gain[i];
+  }
+  const bool positive = saved[1] >= saved[0];
+  for (double& t : kept)
+    if ((t > 0) != positive) t = 0;
+  out.slide = std::move(kept);
+  out.saved = saved[positive];
+  return out;
+}
+
+double median_of_copy(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Two noise models, the better kept:
+// - the hinge's own: rest at the hinge's reference, noise its scale (a
+//   ram's slide, where the hinge fits all else);
+// - the axis's own, from the along-axis residuals themselves: rest at the
+//   level most samples share within their jitter (consecutive samples'
+//   differences: a held press changes the level twice, not every sample,
+//   so a ram driven out for most of the clip still leaves its rest apart),
+//   noise their median absolute deviation from it (a slow wander counts,
+//   unlike in the jitter). The hinge's scale is the residuals' over all six
+//   directions; a round part's spin and its slips across its face (weakly
+//   constrained, yet not weightless) inflate it far above the noise of the
+//   face's offset along its normal, where a button's press shows, and the
+//   hinge's reference sits between rest and pressed. A press is held: here
+//   only slides on two consecutive samples or more count (a registration
+//   that jumps for one sample is not a press).
+AxisSlide best_axis_slide(const std::vector<double>& u, const std::vector<double>& jn) {
+  AxisSlide best = axis_slide(u, jn, 0.0, 1.0, false);
+  std::vector<double> values;
+  for (size_t i = 0; i < u.size(); ++i)
+    if (jn[i] > 0) values.push_back(u[i]);
+  if (values.size() < 3) return best;
+  std::vector<double> steps;
+  for (size_t i = 1; i < values.size(); ++i) steps.push_back(std::abs(values[i] - values[i - 1]));
+  const double jitter = std::max(1.4826 * median_of_copy(steps) / std::sqrt(2.0), 1e-9);
+  double rest = median_of_copy(values);
+  size_t most = 0;
+  for (double level : values) {
+    size_t near = 0;
+    for (double v : values) near += std::abs(v - level) < jitter;
+    if (near > most) most = near, rest = level;
+  }
+  std::vector<double> off;
+  for (double v : values) off.push_back(std::abs(v - rest));
+  const double sigma = std::max(1.4826 * median_of_copy(off), jitter);
+  AxisSlide own = axis_slide(u, jn, rest, sigma, true);
+  return own.saved > best.saved ? own : best;
+}
+
 }  // namespace
 
 ModelFit fit_fixed_weighted(const Track& track) {
@@ -384,33 +479,19 @@ ModelFit fit_revolute_weighted(const Track& track, const std::vector<HingeFit>& 
   for (double t : chosen.theta) hinge->theta.push_back(t - theta0);
   fit.parameters = 10 + static_cast<int>(n);
   finish(&fit, best_cost, chosen_w, residuals_of(chosen, track));
-  // The hinge also sliding along its axis (HingeFit::slide). The residual
-  // is linear in the slide, so each sample's best slide and what it gains
-  // (-2 log L) are closed-form. A sample takes its slide only where the
-  // gain pays for naming it (log(6n), as a coordinate costs); the slide as
-  // a whole costs one more parameter. A slide from rest goes one way (a
-  // button pressed in, a plunger pulled out), so only the samples on one
-  // side count, the side that gains more: a tracker's slips along the axis
-  // go both ways and split their gain.
-  const double per = std::log(6.0 * n);
+  // The hinge also sliding along its axis (HingeFit::slide): each sample's
+  // whitened residual along the axis (AxisSlide).
   Vec6 along = Vec6::Zero();
   along.tail<3>() = chosen.a;
-  std::vector<double> slide(n, 0.0);
-  double saved[2] = {0, 0};  // negative, positive side
+  std::vector<double> u(n, 0.0), jn(n, 0.0);
   for (size_t i = 0; i < n; ++i) {
     const Vec6 e = chosen_w.whiten(i, chosen.residual(track, i)), j = chosen_w.whiten(i, along);
-    const double jj = j.squaredNorm();
-    if (!(jj > 0)) continue;
-    const double gain = std::pow(j.dot(e), 2) / jj;
-    if (gain <= per) continue;
-    slide[i] = j.dot(e) / jj;
-    saved[slide[i] > 0] += gain - per;
+    jn[i] = j.norm();
+    if (jn[i] > 0) u[i] = j.dot(e) / jn[i];
   }
-  const bool positive = saved[1] >= saved[0];
-  for (double& t : slide)
-    if ((t > 0) != positive) t = 0;
-  hinge->slide = std::move(slide);
-  if (fit.valid) hinge->slide_bic = fit.bic + per - saved[positive];
+  const AxisSlide slide = best_axis_slide(u, jn);
+  hinge->slide = slide.slide;
+  if (fit.valid) hinge->slide_bic = fit.bic + std::log(6.0 * n) - slide.saved;
   return fit;
 }
 

@@ -46,9 +46,11 @@ struct HingeFit {
   // The same hinge also sliding along its own axis (a cylinder), for a part
   // that turns about an axis through itself: its turn may be only the
   // registration slipping round a near-symmetry while the part is pressed
-  // in. Per sample the slide (m, along `axis`; 0 where a sample is better
-  // described at rest), and the BIC of hinge and slide together
-  // (fit_revolute_weighted()). Infinite when not fitted.
+  // in. Per sample the slide (m, along `axis`, from the part's rest; 0
+  // where a sample is better described at rest), and the BIC of hinge and
+  // slide together (fit_revolute_weighted(): the slide is measured against
+  // the hinge's noise scale or against the axis's own, whichever shows it
+  // better). Infinite when not fitted.
   std::vector<double> slide;
   double slide_bic = std::numeric_limits<double>::infinity();
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "pipeline/cloud/icp.h"
 
@@ -307,9 +308,33 @@ bool turn_a_slip_could_be(const Cloud& model, const Articulation& fit) {
          visibility(model, "revolute", fit.axis, fit.origin) < kSlipVisibility;
 }
 
-bool slides_under_a_slip(const Cloud& model, const Articulation& typing, const Articulation& frames) {
-  return typing.slide_bic < typing.revolute.bic && frames.slide_bic < frames.revolute.bic &&
-         turn_a_slip_could_be(model, frames);
+// Where a fit's slide goes: along its axis, on the side its samples slid.
+Eigen::Vector3d slide_direction(const Articulation& a) {
+  double sum = 0;
+  for (double t : a.slide) sum += t;
+  return sum < 0 ? Eigen::Vector3d(-a.slide_axis) : a.slide_axis;
+}
+
+// The frames a fit's samples say slid (samples[k]: sample k's frames).
+std::set<int> slid_frames(const Articulation& a, const std::vector<std::vector<int>>& samples) {
+  std::set<int> out;
+  for (size_t k = 0; k < a.slide.size() && k < samples.size(); ++k)
+    if (a.slide[k] != 0) out.insert(samples[k].begin(), samples[k].end());
+  return out;
+}
+
+// Both passes must see the same press: the same way along the axis, and
+// mostly in the same frames (a drift that one pass takes for a slide here
+// and the other there is not a press).
+bool slides_under_a_slip(const Cloud& model, const Articulation& typing, const std::vector<std::vector<int>>& typing_samples,
+                         const Articulation& frames, const std::vector<std::vector<int>>& frame_samples) {
+  if (!(typing.slide_bic < typing.revolute.bic && frames.slide_bic < frames.revolute.bic &&
+        slide_direction(typing).dot(slide_direction(frames)) > 0 && turn_a_slip_could_be(model, frames)))
+    return false;
+  const std::set<int> a = slid_frames(typing, typing_samples), b = slid_frames(frames, frame_samples);
+  size_t both = 0;
+  for (int f : a) both += b.count(f);
+  return 2 * both >= a.size();
 }
 
 }  // namespace
@@ -509,7 +534,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     for (size_t k = 0; k < frames.size() && k < a.q.size(); ++k)
       for (int f : frames[k]) q[f] = a.q[k];
     // The slip rules read the part's own track.
-    if (!grip_decides && type == "revolute" && slides_under_a_slip(track.model, j.from_part, a)) {
+    if (!grip_decides && type == "revolute" && slides_under_a_slip(track.model, j.from_part, part_frames, a, frames)) {
       j.type = "prismatic";
       j.slide_over_turn = true;
       size_t peak = 0;
