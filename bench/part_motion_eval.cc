@@ -216,6 +216,7 @@ int main(int argc, char** argv) {
     if (!obs.hand_clouds.empty()) {
       efc::pipeline::TrackOptions grip_tracking;
       grip_tracking.carry_unseen_motion = false;
+      grip_tracking.reacquire_leaps = false;
       for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
         bool held = false;
         for (const Eigen::Vector3d& h : hand_points[p]) held |= !std::isnan(h.x());

@@ -1,7 +1,8 @@
 // The part tracker (pipeline/infer/part_tracking.h) on made-up clouds: a
 // round part that stops showing its turn does not go on turning when the
 // tracker carries on only the motion it saw (the grip's tracking), and
-// does when it carries on every step (the parts' own).
+// does when it carries on every step (the parts' own); a lid snapped open
+// and a drawer snapped out, held there for a while, are found again.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -71,6 +72,80 @@ TEST(PipelineInferTracking, ARoundPartThatStopsShowingItsTurnStopsTurning) {
   const PartTrack carried = track_clouds(clouds, to_object);
   ASSERT_TRUE(carried.tracked[10]);
   EXPECT_NEAR(Eigen::AngleAxisd(carried.motion[10].linear()).angle(), 1.0, 0.05);
+}
+
+// A box 30 x 20 x 2 cm seen on its top (or its underside), front and
+// sides (outward normals), moved by `pose`.
+Cloud box_surface(const Eigen::Isometry3d& pose, bool underside = false) {
+  Cloud c;
+  auto add = [&](const Vector3d& p, const Vector3d& n) {
+    c.points.push_back(pose * p);
+    c.normals.push_back(pose.linear() * n);
+  };
+  const double face_z = underside ? -0.01 : 0.01;
+  for (int i = 0; i <= 30; ++i)
+    for (int j = 0; j <= 20; ++j)
+      add(Vector3d(-0.15 + 0.01 * i, -0.1 + 0.01 * j, face_z), Vector3d(0, 0, underside ? -1 : 1));
+  for (int i = 0; i <= 30; ++i)
+    for (int k = 0; k <= 4; ++k) add(Vector3d(-0.15 + 0.01 * i, -0.1, -0.01 + 0.005 * k), -Vector3d::UnitY());
+  for (int side : {-1, 1})
+    for (int j = 0; j <= 20; ++j)
+      for (int k = 0; k <= 4; ++k)
+        add(Vector3d(side * 0.15, -0.1 + 0.01 * j, -0.01 + 0.005 * k), side * Vector3d::UnitX());
+  return c;
+}
+
+// Frames 10 to 19 hold the part at `moved` (reached in one frame, out of
+// ICP's reach from the frame before); the others at rest.
+// `underside`: the moved part shows its other face (a lid lifted towards
+// the person in front).
+std::vector<Cloud> snapped(const Eigen::Isometry3d& moved, bool underside = false) {
+  std::vector<Cloud> clouds;
+  for (int f = 0; f < 30; ++f) {
+    const bool away = f >= 10 && f < 20;
+    clouds.push_back(box_surface(away ? moved : Eigen::Isometry3d::Identity(), away && underside));
+  }
+  return clouds;
+}
+
+TEST(PipelineInferTracking, ALidSnappedOpenIsFoundAgain) {
+  // 60 degrees about its back edge (x through y = 0.1, z = 0).
+  Eigen::Isometry3d open = Eigen::Isometry3d::Identity();
+  open.linear() = Eigen::AngleAxisd(kPi / 3, Vector3d::UnitX()).toRotationMatrix();
+  open.translation() = Vector3d(0, 0.1, 0) - open.linear() * Vector3d(0, 0.1, 0);
+  const std::vector<Eigen::Isometry3d> to_object(30, Eigen::Isometry3d::Identity());
+  // Showing the same faces open, and showing its inside: a model of its top
+  // alone fits the inside only flipped over, so the search has the unseen
+  // face too.
+  for (bool underside : {false, true}) {
+    const PartTrack t = track_clouds(snapped(open, underside), to_object);
+    ASSERT_EQ(t.reference_frame, 0);
+    for (int f = 0; f < 30; ++f) {
+      ASSERT_TRUE(t.tracked[f]) << f << (underside ? " (underside)" : "");
+      const Eigen::Isometry3d want = f >= 10 && f < 20 ? open : Eigen::Isometry3d::Identity();
+      EXPECT_LT(Eigen::AngleAxisd(t.motion[f].linear() * want.linear().transpose()).angle(), 0.03) << f << underside;
+      EXPECT_LT((t.motion[f] * Vector3d(0, -0.1, 0) - want * Vector3d(0, -0.1, 0)).norm(), 0.02) << f << underside;
+    }
+  }
+  // Without the search (the grip's tracking), the open frames stay lost.
+  TrackOptions no_search;
+  no_search.reacquire_leaps = false;
+  const PartTrack lost = track_clouds(snapped(open), to_object, no_search);
+  for (int f = 10; f < 20; ++f) EXPECT_FALSE(lost.tracked[f]) << f;
+}
+
+TEST(PipelineInferTracking, ADrawerSnappedOutIsFoundAgainAsASlide) {
+  // 30 cm out along -y in one frame, clear of where it was: found again as
+  // that slide, not as a turn.
+  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
+  out.translation() = Vector3d(0, -0.3, 0);
+  const std::vector<Eigen::Isometry3d> to_object(30, Eigen::Isometry3d::Identity());
+  const PartTrack t = track_clouds(snapped(out), to_object);
+  for (int f = 10; f < 20; ++f) {
+    ASSERT_TRUE(t.tracked[f]) << f;
+    EXPECT_LT(Eigen::AngleAxisd(t.motion[f].linear()).angle(), 0.02) << f;
+    EXPECT_LT((t.motion[f].translation() - out.translation()).norm(), 0.003) << f;
+  }
 }
 
 }  // namespace

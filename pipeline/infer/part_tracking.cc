@@ -7,10 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 #include "pipeline/cloud/fusion.h"
 #include "pipeline/cloud/icp.h"
 #include "pipeline/cloud/kdtree.h"
+#include "pipeline/infer/reacquisition.h"
 
 namespace efc::pipeline {
 
@@ -78,7 +80,9 @@ void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::
   // from guesses would run away).
   std::vector<Eigen::Isometry3d> to_model(n, Eigen::Isometry3d::Identity());
   int last_good = -1, before_last_good = -1;
-  auto one = [&](int f) {
+  // `m`, `m_tree`: the model registered onto (a run found again uses the
+  // model with a plate's unseen face).
+  auto one_onto = [&](int f, const Cloud& m, const KdTree& m_tree) {
     std::vector<Eigen::Isometry3d> starts;
     const bool from_seed = seeded && seed_ok[f];
     if (from_seed) {
@@ -104,8 +108,8 @@ void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::
     for (const Eigen::Isometry3d& start : starts) {
       IcpResult r;
       r.transform = start;
-      if (!from_seed) r = icp_point_to_plane(c, model, tree, start, coarse);
-      r = icp_point_to_plane(c, model, tree, r.transform, fine);
+      if (!from_seed) r = icp_point_to_plane(c, m, m_tree, start, coarse);
+      r = icp_point_to_plane(c, m, m_tree, r.transform, fine);
       if (!have || r.inlier_fraction > best.inlier_fraction + 1e-9) best = r, have = true;
       if (best.inlier_fraction > 0.6) break;  // good enough: skip the other starts
     }
@@ -124,12 +128,105 @@ void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::
       last_good = f;
     }
   };
+  auto one = [&](int f) { one_onto(f, model, tree); };
   const int ref = out->reference_frame;
   one(ref);
   const int ref_good = last_good;
   for (int f = ref + 1; f < n; ++f) one(f);
   last_good = ref_good, before_last_good = -1;
   for (int f = ref - 1; f >= 0; --f) one(f);
+  if (!seeded && options.reacquire_leaps) {
+    // Held states the chain lost (reacquisition.h): the run's frame with
+    // most points from the global starts, then the chain through the run,
+    // both onto the model with a plate's unseen face.
+    IcpOptions search = coarse;
+    search.subsample = 250;
+    search.max_iterations = 20;
+    const Cloud both_faces = with_back_face(model);
+    const KdTree both_tree(both_faces.points);
+    // How far the part's points jump from frame a to frame b (0 where
+    // either is unseen): only a leap beyond the registration's reach (the
+    // coarse correspondence distance) at an end of the run is searched for.
+    auto jump = [&](int a, int b) {
+      if (a < 0 || b >= n || clouds[a].size() < kMinPoints || clouds[b].size() < kMinPoints) return 0.0;
+      return (to_object[a] * centroid(clouds[a]) - to_object[b] * centroid(clouds[b])).norm();
+    };
+    for (int begin = 0; begin < n;) {
+      int end = begin;
+      while (end < n && !out->tracked[end] && out->inliers[end] < kReacquireLost &&
+             clouds[end].size() >= kReacquireMinPoints)
+        ++end;
+      if (end - begin < kReacquireRun ||
+          std::max(jump(begin - 1, begin), jump(end - 1, end)) < coarse.max_correspondence) {
+        begin = end + 1;
+        continue;
+      }
+      int anchor = begin;
+      for (int f = begin; f < end; ++f)
+        if (clouds[f].size() > clouds[anchor].size()) anchor = f;
+      const Cloud c = in_object(clouds, anchor, to_object);
+      // The registered frames next to the run (the part as it was just
+      // before and just after), then a few dozen others, every few frames.
+      std::vector<Eigen::Isometry3d> neighbours, registered;
+      for (int f = begin - 1; f >= 0; --f)
+        if (out->tracked[f]) {
+          neighbours.push_back(to_model[f]);
+          break;
+        }
+      for (int f = end; f < n; ++f)
+        if (out->tracked[f]) {
+          neighbours.push_back(to_model[f]);
+          break;
+        }
+      for (int f = 0; f < n; ++f)
+        if (out->tracked[f]) registered.push_back(to_model[f]);
+      if (registered.size() > 24) {
+        std::vector<Eigen::Isometry3d> some;
+        for (size_t k = 0; k < registered.size(); k += registered.size() / 24) some.push_back(registered[k]);
+        registered.swap(some);
+      }
+      registered.insert(registered.begin(), neighbours.begin(), neighbours.end());
+      std::vector<IcpResult> fits;
+      for (const Eigen::Isometry3d& start : reacquisition_starts(c, model, registered)) {
+        IcpResult r = icp_point_to_plane(c, both_faces, both_tree, start, search);
+        r = icp_point_to_plane(c, both_faces, both_tree, r.transform, fine);
+        if (r.inlier_fraction > 0.5 && r.correspondences >= kMinPoints) fits.push_back(r);
+      }
+      double most = 0;
+      for (const IcpResult& r : fits) most = std::max(most, r.inlier_fraction);
+      // Among the fits about as good as the best, the one nearest where the
+      // part was next to the run (at rest when nothing was registered).
+      if (neighbours.empty()) neighbours.push_back(Eigen::Isometry3d::Identity());
+      auto away = [&](const IcpResult& r) {
+        double d = std::numeric_limits<double>::infinity();
+        for (const Eigen::Isometry3d& b : neighbours)
+          d = std::min(d, mean_displacement(model, r.transform.inverse(), b.inverse()));
+        return d;
+      };
+      const IcpResult* chosen = nullptr;
+      double chosen_away = 0;
+      for (const IcpResult& r : fits) {
+        if (r.inlier_fraction < most - kReacquireTie) continue;
+        const double a = away(r);
+        if (!chosen || a < chosen_away) chosen = &r, chosen_away = a;
+      }
+      if (chosen) {
+        out->tracked[anchor] = true;
+        out->rmse[anchor] = chosen->rmse;
+        out->inliers[anchor] = chosen->inlier_fraction;
+        out->conditioning[anchor] = chosen->normalized_eigenvalues(0);
+        out->hessian[anchor] = chosen->hessian;
+        out->hessian_center[anchor] = chosen->hessian_center;
+        out->hessian_scale[anchor] = chosen->scale_length;
+        to_model[anchor] = chosen->transform;
+        last_good = anchor, before_last_good = -1;
+        for (int f = anchor + 1; f < end; ++f) one_onto(f, both_faces, both_tree);
+        last_good = anchor, before_last_good = -1;
+        for (int f = anchor - 1; f >= begin; --f) one_onto(f, both_faces, both_tree);
+      }
+      begin = end + 1;
+    }
+  }
   out->frames_tracked = 0;
   for (int f = 0; f < n; ++f) {
     out->motion[f] = to_model[f].inverse();
@@ -208,7 +305,8 @@ PartTrack track_clouds(const std::vector<Cloud>& clouds, const std::vector<Eigen
   // Pass 1: onto the reference frame's own points.
   Cloud model = in_object(clouds, out.reference_frame, to_object);
   register_frames(clouds, to_object, model, false, options, &out);
-  // Pass 2: onto every tracked frame fused in the reference configuration.
+  // Pass 2: onto every tracked frame fused in the reference configuration
+  // (a face seen only in frames found again, a lid's inside, is in it).
   // The model's resolution follows the part's size: 3 mm for a knob, up to
   // 1 cm for a door (a finer model of a large part only slows ICP).
   Eigen::AlignedBox3d box;

@@ -5,7 +5,9 @@
 // of every registered frame (a fuller surface, and the hand's occlusion of
 // one frame no longer matters). Frames are visited outward from the
 // reference, each starting from its neighbour's motion extrapolated at
-// constant velocity, so a fast door does not lose the track.
+// constant velocity, so a fast door does not lose the track; a state the
+// chain loses to a leap (a lid snapped open and held) is searched for
+// globally and the chain goes on from there (reacquisition.h).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -59,6 +61,11 @@ struct TrackOptions {
   // (a finger's roll, a round knob's spin) a step was never measured, and
   // carried on frame after frame it runs away (the grip's track).
   bool carry_unseen_motion = true;
+  // A state the chain loses to a leap is searched for (reacquisition.h): a
+  // part's lid snapped open. Not the grip's: the hand's points around its
+  // contact are seen only while it holds, and a leap there is a new grasp,
+  // not a held state to find again.
+  bool reacquire_leaps = true;
 };
 
 // The same for any rigid thing seen frame by frame: clouds[f] in the world
