@@ -115,6 +115,14 @@ std::vector<double> smoothed(const std::vector<double>& q, int half) {
 // swamps a Gaussian likelihood and hides the real motion. A frame is
 // dropped when its pose is further from the median pose of the frames
 // around it than kSpikeMads robust deviations (the MAD over the whole track).
+// Except a part swung about a hinge beside it: a door a function snaps
+// open in a few frames and shuts again is as far from its neighbourhood's
+// median while it is open, but each frame lies near the midway pose of the
+// frames just before and after it (on the way open, held open, on the way
+// back), and its centroid swings with its turn. A
+// failure leaves and returns, and a slip round the part's own symmetry or a
+// flip about its middle turns it where it is (a registration may hold such
+// a slip for a few frames, which passes the midway test).
 constexpr int kSpikeHalfWindow = 4;
 constexpr double kSpikeMads = 5.0;
 constexpr int kPartBin = 5;
@@ -131,9 +139,22 @@ double median_of(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-std::vector<bool> pose_spikes(const std::vector<Eigen::Vector3d>& rot, const std::vector<Eigen::Vector3d>& pos) {
+// A frame's turn away from its neighbourhood is a swing about a hinge
+// beside the part when its centroid moves by at least this share of the
+// angle times the part's radius (a door's centroid is about its radius
+// from its hinge; a slip round the part's own axis leaves it in place).
+constexpr double kSwingShare = 0.5;
+// The largest robust spread of a track's orientations (about its
+// neighbourhoods' medians) at which a swing is told from a failure: twice
+// the tracker's floor.
+constexpr double kSteadyRotation = 2 * kRotationFloor;
+
+// rot, pos: each frame's rotation vector and centroid; `radius`: the
+// part's median distance from its centroid.
+std::vector<bool> pose_spikes(const std::vector<Eigen::Vector3d>& rot, const std::vector<Eigen::Vector3d>& pos,
+                              double radius) {
   const int m = static_cast<int>(rot.size());
-  std::vector<double> d_rot(m), d_pos(m);
+  std::vector<double> d_rot(m), d_pos(m), mid_rot(m, kNaN), mid_pos(m, kNaN);
   for (int i = 0; i < m; ++i) {
     Eigen::Vector3d med_r, med_p;
     for (int c = 0; c < 3; ++c) {
@@ -144,13 +165,28 @@ std::vector<bool> pose_spikes(const std::vector<Eigen::Vector3d>& rot, const std
     }
     d_rot[i] = (rot[i] - med_r).norm();
     d_pos[i] = (pos[i] - med_p).norm();
+    if (i > 0 && i + 1 < m) {
+      // Less a quarter of the step across it: a point swung along an arc
+      // passes off its chord's middle (by an eighth of the chord where the
+      // two steps span 60 degrees).
+      mid_rot[i] = (rot[i] - 0.5 * (rot[i - 1] + rot[i + 1])).norm() - 0.25 * (rot[i + 1] - rot[i - 1]).norm();
+      mid_pos[i] = (pos[i] - 0.5 * (pos[i - 1] + pos[i + 1])).norm() - 0.25 * (pos[i + 1] - pos[i - 1]).norm();
+    }
   }
   // 1.4826 MAD: a standard deviation for Gaussian noise; floors at the
   // tracker's precision keep a noise-free track from flagging everything.
   const double s_rot = std::max(1.4826 * median_of(d_rot), kRotationFloor);
   const double s_pos = std::max(1.4826 * median_of(d_pos), kPositionFloor);
   std::vector<bool> spike(m, false);
-  for (int i = 0; i < m; ++i) spike[i] = d_rot[i] > kSpikeMads * s_rot || d_pos[i] > kSpikeMads * s_pos;
+  // A swing is told from a failure only on a track whose orientation the
+  // registration holds elsewhere (a spinning knob's jumps are its noise).
+  const bool steady = s_rot <= kSteadyRotation;
+  for (int i = 0; i < m; ++i) {
+    spike[i] = d_rot[i] > kSpikeMads * s_rot || d_pos[i] > kSpikeMads * s_pos;
+    const bool between = mid_rot[i] <= kSpikeMads * s_rot && mid_pos[i] <= kSpikeMads * s_pos;  // false for NaN
+    const bool swung = steady && d_rot[i] > kSpikeMads * s_rot && d_pos[i] >= kSwingShare * d_rot[i] * radius;
+    if (spike[i] && between && swung) spike[i] = false;
+  }
   return spike;
 }
 
@@ -208,7 +244,9 @@ Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int 
     rot.push_back(rotation_vector(quat.back()));
     pos.push_back(track.motion[f] * centroid);
   }
-  const std::vector<bool> spike = pose_spikes(rot, pos);
+  std::vector<double> from_centroid;
+  for (const Eigen::Vector3d& p : track.model.points) from_centroid.push_back((p - centroid).norm());
+  const std::vector<bool> spike = pose_spikes(rot, pos, median_of(from_centroid));
   Track out;
   frames_of_sample->clear();
   std::vector<int> bin;
