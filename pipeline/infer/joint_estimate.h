@@ -87,7 +87,8 @@ Eigen::Isometry3d joint_motion(const JointEstimate& joint, double q);
 
 // The part track as the articulation estimator sees it: the pose of
 // `centroid` (a point of the model) in each tracked frame, frames whose pose
-// jumps away from their neighbours' dropped as ICP failures, then averaged
+// jumps away from their neighbours' dropped as ICP failures (not those of a
+// door swung open for a few frames: pose_spikes in the .cc), then averaged
 // over runs of up to `bin_frames` consecutive frames (1: none).
 // frames_of_sample[k] lists the frames averaged into sample k. Each sample
 // carries its information (Track::information) from the registrations' Hessians;
