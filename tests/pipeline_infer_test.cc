@@ -57,13 +57,19 @@ Cloud box_faces(const Vector3d& half, const Vector3d& centre, int divisions = 8)
 // A door-like panel: the faces of a 0.6 x 0.02 x 0.8 box.
 Cloud panel() { return box_faces(Vector3d(0.3, 0.01, 0.4), Vector3d(0.3, 0, 0.4), 10); }
 
-// A part track whose motion is a turn of q(f) about `axis` through `origin`.
-PartTrack turning(const Cloud& model, const Vector3d& axis, const Vector3d& origin, double amplitude, int frames,
-                  double noise, unsigned seed) {
+// An empty track of part 0 with `model`, its reference the first frame.
+PartTrack track_of(const Cloud& model) {
   PartTrack t;
   t.part = 0;
   t.reference_frame = 0;
   t.model = model;
+  return t;
+}
+
+// A part track whose motion is a turn of q(f) about `axis` through `origin`.
+PartTrack turning(const Cloud& model, const Vector3d& axis, const Vector3d& origin, double amplitude, int frames,
+                  double noise, unsigned seed) {
+  PartTrack t = track_of(model);
   std::mt19937 rng(seed);
   std::normal_distribution<double> g(0, noise);
   for (int f = 0; f < frames; ++f) {
@@ -428,10 +434,7 @@ TEST(PipelineInfer, ALeversPressShowsThroughRegistrationNoiseAndFlips) {
   // 1 mm of position noise, and one frame in seven flipped end over end (the
   // lever's mirror image fits its points about as well).
   const int frames = 140;
-  PartTrack t;
-  t.part = 0;
-  t.reference_frame = 0;
-  t.model = lever();
+  PartTrack t = track_of(lever());
   std::mt19937 rng(11);
   std::normal_distribution<double> g(0, 1);
   const Vector3d centre(0.03, 0, 0.005);
@@ -487,10 +490,7 @@ TEST(PipelineInfer, ADoorSnappedOpenForAFewFramesIsAMotionNotASpike) {
     }
     return 0.0;
   };
-  PartTrack t;
-  t.part = 0;
-  t.reference_frame = 0;
-  t.model = panel();
+  PartTrack t = track_of(panel());
   std::mt19937 rng(5);
   std::normal_distribution<double> g(0, 0.001);
   const int flipped = 45;
@@ -528,10 +528,7 @@ TEST(PipelineInfer, AGraspHoldsOnWhileThePartsRegistrationFails) {
   // the hand in frames 20-39, where its registration failed (hidden under
   // the hand). The hand holds its tip all along, then draws back 10 cm.
   const int frames = 70;
-  PartTrack t;
-  t.part = 0;
-  t.reference_frame = 0;
-  t.model = lever();
+  PartTrack t = track_of(lever());
   for (int f = 0; f < frames; ++f) {
     t.motion.push_back(Eigen::Isometry3d::Identity());
     t.tracked.push_back(f < 20 || f >= 40);

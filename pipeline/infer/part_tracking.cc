@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
 
 #include "pipeline/cloud/fusion.h"
 #include "pipeline/cloud/icp.h"
@@ -25,6 +24,9 @@ Cloud in_object(const std::vector<Cloud>& clouds, int frame, const std::vector<E
 }
 
 constexpr size_t kMinPoints = 12;
+
+// A registration the track takes: most of the frame's points matched.
+bool registered_well(const IcpResult& r) { return r.inlier_fraction > 0.5 && r.correspondences >= kMinPoints; }
 
 // The part of a registration step `step` (model frame, applied on the left)
 // that the registration of its last frame could see: its twist about that
@@ -80,6 +82,17 @@ void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::
   // from guesses would run away).
   std::vector<Eigen::Isometry3d> to_model(n, Eigen::Isometry3d::Identity());
   int last_good = -1, before_last_good = -1;
+  // Frame f's registration, as the track reports it.
+  auto record = [&](int f, const IcpResult& r, bool good) {
+    out->tracked[f] = good;
+    out->rmse[f] = r.rmse;
+    out->inliers[f] = r.inlier_fraction;
+    out->conditioning[f] = r.normalized_eigenvalues(0);
+    out->hessian[f] = r.hessian;
+    out->hessian_center[f] = r.hessian_center;
+    out->hessian_scale[f] = r.scale_length;
+    if (good) to_model[f] = r.transform;
+  };
   // `m`, `m_tree`: the model registered onto (a run found again uses the
   // model with a plate's unseen face).
   auto one_onto = [&](int f, const Cloud& m, const KdTree& m_tree) {
@@ -113,17 +126,9 @@ void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::
       if (!have || r.inlier_fraction > best.inlier_fraction + 1e-9) best = r, have = true;
       if (best.inlier_fraction > 0.6) break;  // good enough: skip the other starts
     }
-    const IcpResult& r = best;
-    const bool good = r.inlier_fraction > 0.5 && r.correspondences >= kMinPoints;
-    out->tracked[f] = good;
-    out->rmse[f] = r.rmse;
-    out->inliers[f] = r.inlier_fraction;
-    out->conditioning[f] = r.normalized_eigenvalues(0);
-    out->hessian[f] = r.hessian;
-    out->hessian_center[f] = r.hessian_center;
-    out->hessian_scale[f] = r.scale_length;
+    const bool good = registered_well(best);
+    record(f, best, good);
     if (good) {
-      to_model[f] = r.transform;
       before_last_good = last_good;
       last_good = f;
     }
@@ -190,35 +195,12 @@ void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::
       for (const Eigen::Isometry3d& start : reacquisition_starts(c, model, registered)) {
         IcpResult r = icp_point_to_plane(c, both_faces, both_tree, start, search);
         r = icp_point_to_plane(c, both_faces, both_tree, r.transform, fine);
-        if (r.inlier_fraction > 0.5 && r.correspondences >= kMinPoints) fits.push_back(r);
+        if (registered_well(r)) fits.push_back(r);
       }
-      double most = 0;
-      for (const IcpResult& r : fits) most = std::max(most, r.inlier_fraction);
-      // Among the fits about as good as the best, the one nearest where the
-      // part was next to the run (at rest when nothing was registered).
-      if (neighbours.empty()) neighbours.push_back(Eigen::Isometry3d::Identity());
-      auto away = [&](const IcpResult& r) {
-        double d = std::numeric_limits<double>::infinity();
-        for (const Eigen::Isometry3d& b : neighbours)
-          d = std::min(d, mean_displacement(model, r.transform.inverse(), b.inverse()));
-        return d;
-      };
-      const IcpResult* chosen = nullptr;
-      double chosen_away = 0;
-      for (const IcpResult& r : fits) {
-        if (r.inlier_fraction < most - kReacquireTie) continue;
-        const double a = away(r);
-        if (!chosen || a < chosen_away) chosen = &r, chosen_away = a;
-      }
+      // A flat face fits itself turned about its normal as well as not.
+      const IcpResult* chosen = nearest_of_the_best(fits, model, neighbours);
       if (chosen) {
-        out->tracked[anchor] = true;
-        out->rmse[anchor] = chosen->rmse;
-        out->inliers[anchor] = chosen->inlier_fraction;
-        out->conditioning[anchor] = chosen->normalized_eigenvalues(0);
-        out->hessian[anchor] = chosen->hessian;
-        out->hessian_center[anchor] = chosen->hessian_center;
-        out->hessian_scale[anchor] = chosen->scale_length;
-        to_model[anchor] = chosen->transform;
+        record(anchor, *chosen, true);
         last_good = anchor, before_last_good = -1;
         for (int f = anchor + 1; f < end; ++f) one_onto(f, both_faces, both_tree);
         last_good = anchor, before_last_good = -1;

@@ -4,15 +4,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace efc::pipeline {
 namespace {
 
-Eigen::Matrix3d principal_axes(const Cloud& c) {
+// The points' covariance, decomposed: principal axes (columns, the thinnest
+// first) and variances.
+Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> spread(const Cloud& c) {
   const Eigen::Vector3d mean = centroid(c);
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (const Eigen::Vector3d& p : c.points) cov += (p - mean) * (p - mean).transpose();
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors();
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov / static_cast<double>(std::max<size_t>(1, c.size())));
+}
+
+// The mean distance between the model's points moved by a and by b (at
+// most 200 of them).
+double mean_displacement(const Cloud& model, const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  const size_t stride = std::max<size_t>(1, model.size() / 200);
+  double sum = 0;
+  int count = 0;
+  for (size_t i = 0; i < model.size(); i += stride, ++count) sum += (a * model.points[i] - b * model.points[i]).norm();
+  return count ? sum / count : 0.0;
 }
 
 }  // namespace
@@ -21,7 +34,7 @@ std::vector<Eigen::Isometry3d> reacquisition_starts(const Cloud& frame, const Cl
                                                     const std::vector<Eigen::Isometry3d>& registered) {
   std::vector<Eigen::Isometry3d> starts = registered;
   const Eigen::Vector3d cf = centroid(frame), cm = centroid(model);
-  const Eigen::Matrix3d model_axes = principal_axes(model);
+  const Eigen::Matrix3d model_axes = spread(model).eigenvectors();
   const std::vector<Eigen::Vector3d> axes = {model_axes.col(0), model_axes.col(1), model_axes.col(2),
                                              Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
                                              Eigen::Vector3d::UnitZ()};
@@ -44,9 +57,7 @@ std::vector<Eigen::Isometry3d> reacquisition_starts(const Cloud& frame, const Cl
 Cloud with_back_face(const Cloud& model) {
   if (!model.has_normals() || model.size() < 50) return model;
   const Eigen::Vector3d mean = centroid(model);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const Eigen::Vector3d& p : model.points) cov += (p - mean) * (p - mean).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov / static_cast<double>(model.size()));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig = spread(model);
   const double thin = std::sqrt(std::max(0.0, eig.eigenvalues()(0))), narrow = std::sqrt(eig.eigenvalues()(1));
   if (!(narrow > 0.02 && thin < 0.15 * narrow)) return model;  // not a plate of a few centimetres or more
   Eigen::Vector3d n = eig.eigenvectors().col(0);
@@ -72,12 +83,27 @@ Cloud with_back_face(const Cloud& model) {
   return out;
 }
 
-double mean_displacement(const Cloud& model, const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  const size_t stride = std::max<size_t>(1, model.size() / 200);
-  double sum = 0;
-  int count = 0;
-  for (size_t i = 0; i < model.size(); i += stride, ++count) sum += (a * model.points[i] - b * model.points[i]).norm();
-  return count ? sum / count : 0.0;
+const IcpResult* nearest_of_the_best(const std::vector<IcpResult>& fits, const Cloud& model,
+                                     const std::vector<Eigen::Isometry3d>& beside) {
+  double most = 0;
+  for (const IcpResult& r : fits) most = std::max(most, r.inlier_fraction);
+  const std::vector<Eigen::Isometry3d> near =
+      beside.empty() ? std::vector<Eigen::Isometry3d>{Eigen::Isometry3d::Identity()} : beside;
+  // How far a fit puts the part from the nearest of those poses (frame ->
+  // model transforms: the part's motion is their inverse).
+  auto away = [&](const IcpResult& r) {
+    double d = std::numeric_limits<double>::infinity();
+    for (const Eigen::Isometry3d& b : near) d = std::min(d, mean_displacement(model, r.transform.inverse(), b.inverse()));
+    return d;
+  };
+  const IcpResult* chosen = nullptr;
+  double chosen_away = 0;
+  for (const IcpResult& r : fits) {
+    if (r.inlier_fraction < most - kReacquireTie) continue;
+    const double a = away(r);
+    if (!chosen || a < chosen_away) chosen = &r, chosen_away = a;
+  }
+  return chosen;
 }
 
 }  // namespace efc::pipeline

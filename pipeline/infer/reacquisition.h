@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "pipeline/cloud/cloud.h"
+#include "pipeline/cloud/icp.h"
 
 namespace efc::pipeline {
 
@@ -54,8 +55,11 @@ std::vector<Eigen::Isometry3d> reacquisition_starts(const Cloud& frame, const Cl
 constexpr double kBackFaceDepth = 0.015;
 Cloud with_back_face(const Cloud& model);
 
-// The mean distance between the model's points moved by a and by b (at
-// most 200 of them).
-double mean_displacement(const Cloud& model, const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+// Among `fits` (frame -> model) within kReacquireTie of the best inliers,
+// the one that puts the model's points nearest, on average, to where the
+// poses `beside` put them (the part just before and after the run; at rest
+// when there are none). Null when `fits` is empty.
+const IcpResult* nearest_of_the_best(const std::vector<IcpResult>& fits, const Cloud& model,
+                                     const std::vector<Eigen::Isometry3d>& beside);
 
 }  // namespace efc::pipeline
