@@ -223,6 +223,37 @@ TEST(PipelineInfer, ADoorsPosesGiveItsHinge) {
   EXPECT_NEAR(j.q.front(), 0.0, 1e-9);
 }
 
+// The axis points the way the part was actuated: a door swung 1.2 rad the
+// negative way about +z and let go a little past its rest (a coin toss
+// for a sign taken from the first sample to the last) is a hinge about -z
+// with q from 0 at rest to +1.2, and the hand's q with it.
+TEST(PipelineInfer, TheAxisPointsTheWayThePartWasActuated) {
+  const int frames = 90;
+  PartTrack t = track_of(panel());
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 0; f < frames; ++f) {
+    const double q = f < 60 ? -1.2 * std::sin(kPi * f / 59) : 0.05 * std::sin(kPi * (f - 59) / 30.0);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(q, Vector3d::UnitZ()).toRotationMatrix();
+    t.motion.push_back(T);
+    t.tracked.push_back(true);
+    t.rmse.push_back(0.001), t.inliers.push_back(1), t.conditioning.push_back(1);
+    hand[f] = T * Vector3d(0.55, -0.02, 0.4);  // the handle, held throughout
+  }
+  t.frames_tracked = frames;
+  const JointEstimate j = estimate_joint(t, hand);
+  ASSERT_EQ(j.type, "revolute");
+  EXPECT_GT(j.axis.dot(-Vector3d::UnitZ()), 0.99);
+  EXPECT_NEAR(j.range_lo, -0.05, 0.02);  // let go past its rest
+  EXPECT_NEAR(j.range_hi, 1.2, 0.05);
+  EXPECT_NEAR(j.q[30], 1.2, 0.05);
+  ASSERT_EQ(j.q_hand.size(), j.q.size());
+  EXPECT_NEAR(j.q_hand[30], 1.2, 0.1);
+  // The motion at q is the door's: the handle at q = 1.2 is where frame 30 put it.
+  const Vector3d handle = joint_motion(j, j.q[30]) * Vector3d(0.55, -0.02, 0.4);
+  EXPECT_LT((handle - hand[30]).norm(), 0.01);
+}
+
 TEST(PipelineInfer, AStillPartIsFixedAndASpinningRingToo) {
   const int frames = 60;
   const JointEstimate still = estimate_joint(turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0005, 2),

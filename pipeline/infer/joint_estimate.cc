@@ -375,6 +375,19 @@ bool slides_under_a_slip(const Cloud& model, const Articulation& typing, const s
   return 2 * both >= a.size();
 }
 
+bool actuated_negatively(const std::vector<double>& q) {
+  std::vector<double> seen;
+  for (double v : q)
+    if (!std::isnan(v)) seen.push_back(v);
+  if (seen.size() < 2) return false;
+  // The 2nd and 98th percentiles, as the range below: a few frames of
+  // tracker noise do not decide it.
+  std::sort(seen.begin(), seen.end());
+  const double lo = seen[static_cast<size_t>(0.02 * (seen.size() - 1))];
+  const double hi = seen[static_cast<size_t>(0.98 * (seen.size() - 1))];
+  return -lo > hi;
+}
+
 }  // namespace
 
 Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
@@ -620,6 +633,16 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   for (double& v : q)
     if (!std::isnan(v)) v -= q_first;
   fill_gaps(&q);
+  // The axis's sign: actuating moves the part to positive q, from its rest
+  // at q = 0 (spec v1's convention, and the runtime's: a press is s_R rising
+  // through a threshold, so a counter or a latching switch read on a reversed
+  // joint counts its releases). A fit's own sign (from the first sample to
+  // the last) is a coin toss for a knob turned and turned back.
+  if (actuated_negatively(q)) {
+    j.axis = -j.axis;
+    for (double& v : q) v = -v;
+    for (double& v : j.q_hand) v = -v;  // NaN stays NaN
+  }
   const int ref = track.reference_frame;
   const double q_ref = ref >= 0 && ref < n && !q.empty() ? q[ref] : 0.0;
   j.reference_to_zero = joint_motion(j, -q_ref);
