@@ -15,6 +15,7 @@
 
 #include <unistd.h>
 
+#include "pipeline/templates/frame_signals.h"
 #include "pipeline/templates/mapping_fit.h"
 #include "pipeline/templates/template_input.h"
 #include "pipeline/templates/vlm_client.h"
@@ -132,6 +133,69 @@ TEST(TemplatesFit, LagIsEstimated) {
   ASSERT_GE(r.best_index, 0);
   EXPECT_GT(r.best[r.best_index].tau, 0.9);
   EXPECT_LT(r.best[r.best_index].tau, 4.5);
+}
+
+// A switch seen through quick presses (the receptor crosses the threshold
+// in a frame or two): a linear map whose ramp is narrower than that can
+// set the switch between two frames to fit the noise; it is no ramp seen,
+// and binary wins. Frame by frame, and binned as droplets and motes are (one
+// sample per 5 frames, each its bin's mean, so a press crossing inside a
+// bin leaves the fraction of the bin it was on: the models are binned
+// alike).
+TEST(TemplatesFit, AQuickSwitchIsASwitchFrameByFrameAndBinned) {
+  constexpr int kBin = 5;
+  const std::vector<double> s = presses(3, 150, 0, 1);
+  MappingModel truth;
+  truth.type = "binary";
+  truth.threshold = 0.43;
+  const std::vector<double> u = efc::pipeline::model_profile(truth, s, 0.01);
+  for (int bin : {1, kBin})
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+      MappingSeries S;
+      S.s_R = s;
+      S.allow_lag = false;
+      S.bin_frames = bin;
+      S.y.assign(s.size(), NAN);
+      std::mt19937 rng(seed);
+      std::normal_distribution<double> g(0, 0.02);
+      for (size_t b = 0; b < s.size(); b += bin) {
+        double sum = 0;
+        for (size_t i = b; i < b + bin; ++i) sum += u[i];
+        S.y[b + bin / 2] = 1.0 + 2.0 * sum / bin + g(rng);
+      }
+      const auto r = fit_mappings(S, efc::pipeline::mapping_prior(false));
+      EXPECT_EQ(fitted_type(r), "binary") << "bin " << bin << ", seed " << seed;
+      ASSERT_GE(r.best_index, 0);
+      EXPECT_NEAR(r.best[r.best_index].threshold, 0.43, 0.07) << "bin " << bin << ", seed " << seed;
+    }
+}
+
+// A lid's brightness that follows its own pose (shading) is not light: with
+// the pose's quadratic taken out, nothing is left to follow the receptor;
+// a lamp switched on the moving part still shows its switch.
+TEST(TemplatesFit, AMovingEffectorsShadingIsNotItsLight) {
+  const std::vector<double> s = presses(2, 150, 0, 1);
+  std::vector<double> q(s.size()), shaded(s.size()), lit(s.size());
+  std::mt19937 rng(4);
+  std::normal_distribution<double> g(0, 0.003);
+  for (size_t i = 0; i < s.size(); ++i) {
+    q[i] = 1.2 * s[i];                                       // the lid follows the receptor
+    shaded[i] = 0.3 + 0.2 * std::cos(1.0 - q[i]) + g(rng);  // brighter as it faces the light
+    lit[i] = shaded[i] + (s[i] >= 0.5 ? 0.1 : 0.0);          // and a lamp on it switched at 0.5
+  }
+  q[7] = NAN;  // a frame without the lid's pose keeps its sample
+  auto evidence = [&](const std::vector<double>& y) {
+    MappingSeries S;
+    S.s_R = s;
+    S.allow_lag = false;
+    S.y = y;
+    return fit_mappings(S, efc::pipeline::mapping_prior(false)).delta_bic;
+  };
+  EXPECT_GT(evidence(shaded), 100);  // as read: the lid's shading follows the receptor
+  const std::vector<double> unshaded = efc::pipeline::pose_shading_removed(shaded, q);
+  EXPECT_EQ(unshaded[7], shaded[7]);
+  EXPECT_LT(evidence(unshaded), 10);
+  EXPECT_GT(evidence(efc::pipeline::pose_shading_removed(lit, q)), 30);  // part of the switch goes with the pose
 }
 
 // Missing samples and a receptor that never moves: no crash, nothing claimed.

@@ -5,6 +5,8 @@
 #include <limits>
 #include <thread>
 
+#include <Eigen/Dense>
+
 namespace efc::pipeline {
 namespace {
 
@@ -430,6 +432,24 @@ std::vector<EffectorSignals> measure_effectors(const TemplateInput& input, const
     }
   }
   for (EffectorSignals& s : out) s.frames_read = N - *frames_failed;
+  return out;
+}
+
+std::vector<double> pose_shading_removed(const std::vector<double>& y, const std::vector<double>& q) {
+  std::vector<int> rows;
+  for (size_t i = 0; i < y.size() && i < q.size(); ++i)
+    if (std::isfinite(y[i]) && std::isfinite(q[i])) rows.push_back(static_cast<int>(i));
+  if (rows.size() < 6) return y;
+  Eigen::MatrixXd A(rows.size(), 3);
+  Eigen::VectorXd b(rows.size());
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const double x = q[rows[r]];
+    A.row(r) << 1.0, x, x * x;
+    b(r) = y[rows[r]];
+  }
+  const Eigen::VectorXd c = A.colPivHouseholderQr().solve(b);
+  std::vector<double> out = y;
+  for (size_t r = 0; r < rows.size(); ++r) out[rows[r]] = b(r) - A.row(r).dot(c) + c(0);
   return out;
 }
 

@@ -61,4 +61,11 @@ struct EffectorSignals {
 std::vector<EffectorSignals> measure_effectors(const TemplateInput& input, const std::vector<int>& effectors,
                                                int threads, int* frames_failed);
 
+// A moving effector's pixels change with its pose: a lid turning towards
+// the light brightens, its colour shifts with the shading. What its own
+// pixels say of light or heat is what its pose does not explain: y less
+// its least-squares fit in (1, q, q^2) of the effector's joint position q
+// (the constant kept; frames without y or q left as they are).
+std::vector<double> pose_shading_removed(const std::vector<double>& y, const std::vector<double>& q);
+
 }  // namespace efc::pipeline

@@ -28,6 +28,7 @@ struct Prep {
   bool start_anywhere = false;
   std::vector<double> s_fine;  // s linear between frames, kSub samples a frame: [0] = s[0], then (i-1, i]
   bool require_lag = false;
+  int bin = 1;  // MappingSeries::bin_frames
   mutable double instant_bic = kInf;  // require_lag: the best model without a lag
 };
 
@@ -177,9 +178,25 @@ std::vector<double> interval_mean(const std::vector<double>& fine, size_t frames
   return out;
 }
 
+// The response as a binned signal sees it (MappingSeries::bin_frames):
+// each observed sample the mean of its bin's frames, so a switch inside a
+// bin gives the fraction of the bin it was on, as the counts do.
+const std::vector<double>& binned_response(const Prep& P, const std::vector<double>& r, std::vector<double>* out) {
+  const size_t N = r.size();
+  out->assign(N, 0.0);
+  for (size_t i = 0; i < N; ++i) {
+    if (!P.ok[i]) continue;
+    const size_t from = (i / P.bin) * P.bin, to = std::min(N, from + P.bin);
+    double sum = 0;
+    for (size_t j = from; j < to; ++j) sum += r[j];
+    (*out)[i] = sum / static_cast<double>(to - from);
+  }
+  return *out;
+}
+
 void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto, int k_base,
               MappingModel* best, std::vector<double>& scratch) {
-  std::vector<double> twice;
+  std::vector<double> twice, binned;
   const bool lagged = P.taus.size() > 1;
   const std::vector<double> fine = lagged ? model_profile_impl(proto, P.s_fine, P.band) : std::vector<double>();
   // Dead times tried: none, and for a driven joint (second order) up to
@@ -216,9 +233,11 @@ void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto
       lag(scratch, tau * ratio, P.dt, &twice);
       scratch.swap(twice);
     }
+    // A binned signal: each sample its bin's mean (MappingSeries::bin_frames).
+    const std::vector<double>& v = P.bin > 1 ? binned_response(P, scratch, &binned) : scratch;
     double a = 0, b = 0, rho = 0;
     int pairs = 0;
-    const double rss = fit_ar1(P, &scratch, &a, &b, &rho, &pairs);
+    const double rss = fit_ar1(P, &v, &a, &b, &rho, &pairs);
     // The sign holds for on/off models (on is e_hi); a linear or cumulative
     // map may fall as s_R or the presses rise (negative gain or delta).
     const bool on_off = proto.type == "binary" || proto.type == "step";
@@ -247,6 +266,24 @@ void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto
     }
   }
   }
+}
+
+// A linear map's ramp is seen where the receptor, passing through it, puts
+// frames on its slope: it is at least kRampFrames of the receptor's travel
+// per frame there (the median over the frames that cross it). A narrower
+// ramp is a switch between two frames whose timing the ramp's ends adjust
+// to the noise (BIC pays for the one parameter, not for what it buys
+// there): binary and step say the same with fewer.
+constexpr double kRampFrames = 2;
+bool ramp_seen(const Prep& P, double s0, double s1) {
+  std::vector<double> travel;
+  for (size_t i = 1; i < P.s.size(); ++i) {
+    const double lo = std::min(P.s[i - 1], P.s[i]), hi = std::max(P.s[i - 1], P.s[i]);
+    if (hi > lo && hi > s0 && lo < s1) travel.push_back(hi - lo);
+  }
+  if (travel.empty()) return true;
+  std::nth_element(travel.begin(), travel.begin() + static_cast<long>(travel.size() / 2), travel.end());
+  return s1 - s0 >= kRampFrames * travel[travel.size() / 2];
 }
 
 }  // namespace
@@ -328,6 +365,7 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
   P.max_order = series.allow_lag ? std::max(1, series.max_lag_order) : 1;
   P.start_anywhere = series.lag_starts_anywhere;
   P.require_lag = series.allow_lag && series.require_lag;
+  P.bin = std::max(1, series.bin_frames);
   P.s_fine.assign(1 + (N - 1) * kSub, P.s[0]);
   for (size_t i = 1; i < N; ++i)
     for (int k = 1; k <= kSub; ++k) P.s_fine[(i - 1) * kSub + k] = P.s[i - 1] + (P.s[i] - P.s[i - 1]) * k / kSub;
@@ -389,6 +427,7 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
         m.type = "linear";
         m.s0 = lin[i];
         m.s1 = lin[j];
+        if (!ramp_seen(P, m.s0, m.s1)) continue;
         consider(P, model_profile(m, P.s, P.band), m, 5, &R.best[3], scratch);
       }
     // The grids place a switch to within half a frame of a fast press; a
@@ -425,7 +464,7 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
           MappingModel m = base;
           m.s0 = base.s0 + dL * i / kFine;
           m.s1 = base.s1 + dL * j / kFine;
-          if (m.s1 <= m.s0) continue;
+          if (m.s1 <= m.s0 || !ramp_seen(P, m.s0, m.s1)) continue;
           consider(P, model_profile(m, P.s, P.band), m, 5, &R.best[3], scratch);
         }
     }

@@ -71,6 +71,12 @@ struct MappingSeries {
   // follow its target within a frame); the best instant model competes
   // with the null, and delta_bic is the gain over the better of the two.
   bool require_lag = false;
+  // y is binned: observed once per bin_frames frames (from frame 0 on), its
+  // sample the bin's mean (or a transform of it: droplets' and motes' root),
+  // so a model's response is averaged over the bin's frames too: a switch
+  // inside a bin shows as the fraction of the bin it was on, not as a ramp
+  // that only a linear map could fit.
+  int bin_frames = 1;
 };
 
 struct MappingFitResult {

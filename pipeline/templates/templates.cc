@@ -181,6 +181,14 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
                     "the effect is judged from its joint and surroundings only");
 
     const std::vector<double> prior = mapping_prior(rec.joint_type == "continuous");
+    // The effector's own joint position, where it moves (pose_shading_removed).
+    std::vector<double> q_E;
+    if (eff && movable(*eff) && !eff->q.empty()) {
+      q_E = eff->q;
+      q_E.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
+    }
+    const bool effector_moves =
+        !q_E.empty() && spread(q_E) >= 1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3);
     // Every effect's signal fitted against one s_R.
     auto fit_hypotheses = [&](const std::vector<double>& s) {
       std::vector<Hypothesis> H(5);
@@ -201,7 +209,9 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
         } else {
           if (!sig) continue;
           y = k == 1 ? median3(sig->glow) : k == 2 ? median3(sig->heat) : binned_root(k == 3 ? sig->droplets : sig->motes);
+          if (k <= 2 && effector_moves) y = pose_shading_removed(y, q_E);
           if (k == 3) S.allow_lag = true;  // droplets in flight outlast the flow, and take time to fall into view
+          if (k >= 3) S.bin_frames = kBlobBin;  // binned_root()
           if (k == 2) {
             S.allow_lag = true;            // temperature lags its target
             S.lag_starts_anywhere = true;  // from e_lo, whatever the target at rest
@@ -223,7 +233,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
           // A lamp shows on its bulb or on what it lights: the better of the
           // two signals (a bulb under a hood or inside a cabinet is hidden).
           MappingSeries A = S;
-          A.y = sig->surround;
+          A.y = effector_moves ? pose_shading_removed(sig->surround, q_E) : sig->surround;
           A.y.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
           const MappingFitResult around = fit_mappings(A, prior);
           const double ev = around.best_index >= 0 ? std::max(0.0, around.delta_bic) : 0;
@@ -245,16 +255,19 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     };
     std::vector<Hypothesis> H = fit_hypotheses(s_R);
     // The hand's s_R where it moved: kept when some effect follows it
-    // evidently (kMinEvidence) and more strongly than any follows the
-    // part's (the same criterion as between effects; the part's track of a
-    // round knob may be its tracker's drift). When nothing follows either,
-    // the part's stays.
+    // very strongly better (by kMinEvidence) than any follows the part's:
+    // the part's own track measures the joint, the hand's contacts only
+    // through a grip that slides and re-grasps (a knob's angle from a point
+    // near its axis drifts by turns), so near-ties go to the part. The
+    // part's track of a round knob may be its tracker's drift, though, and
+    // then nothing follows it. When nothing follows either, the part's
+    // stays.
     std::string s_R_source = "part";
     double evidence_part = strongest(H), evidence_hand = 0;
     if (hand_moved) {
       std::vector<Hypothesis> H_hand = fit_hypotheses(s_R_hand);
       evidence_hand = strongest(H_hand);
-      if (evidence_hand >= kMinEvidence && evidence_hand > evidence_part) H = std::move(H_hand), s_R = s_R_hand, s_R_source = "hand";
+      if (evidence_hand - evidence_part >= kMinEvidence) H = std::move(H_hand), s_R = s_R_hand, s_R_source = "hand";
     }
 
     // ---- the effect: the signal the receptor explains best
