@@ -254,6 +254,26 @@ TEST(PipelineInfer, TheAxisPointsTheWayThePartWasActuated) {
   EXPECT_LT((handle - hand[30]).norm(), 0.01);
 }
 
+// The hand's points read a turn only from a lever arm: held 1.5 cm from
+// the axis (a knob's grip), a centimetre of detector error turns them by
+// radians, so the templates get no second candidate from them; held at
+// the door's edge they do.
+TEST(PipelineInfer, TheHandReadsATurnOnlyFromALeverArm) {
+  const int frames = 90;
+  const PartTrack t = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 5);
+  std::mt19937 rng(6);
+  std::normal_distribution<double> g(0, 0.007);
+  for (double arm : {0.015, 0.5}) {
+    std::vector<Vector3d> hand = no_hand(frames);
+    for (int f = 0; f < frames; ++f)
+      hand[f] = t.motion[f] * Vector3d(arm, -0.02, 0.4) + Vector3d(g(rng), g(rng), g(rng));
+    const JointEstimate j = estimate_joint(t, hand);
+    ASSERT_EQ(j.type, "revolute") << arm;
+    ASSERT_EQ(j.source, "part") << arm;
+    EXPECT_EQ(j.q_hand.empty(), arm < 0.03) << arm;
+  }
+}
+
 TEST(PipelineInfer, AStillPartIsFixedAndASpinningRingToo) {
   const int frames = 60;
   const JointEstimate still = estimate_joint(turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0005, 2),

@@ -375,6 +375,31 @@ bool slides_under_a_slip(const Cloud& model, const Articulation& typing, const s
   return 2 * both >= a.size();
 }
 
+// Whether the hand's points read a turn: they lie at least
+// kHandLeverNoises hand-detector errors (kHandPointNoise) from the axis,
+// so that one frame's error turns them by a third of a radian at most. A
+// knob's grip, a couple of centimetres from its axis, turns its angle by
+// whole radians from frame to frame (and by whole turns over a clip) while
+// the knob barely moves: its second candidate for the templates would be
+// drift that some signal follows by chance. A slide reads the hand's
+// points along its axis, which their distance from it does not spoil.
+constexpr double kHandPointNoise = 0.01;  // m: the hand detector's error
+constexpr double kHandLeverNoises = 3;
+bool hand_has_lever(const JointEstimate& j, const std::vector<Eigen::Vector3d>& hand,
+                    const std::vector<int>& frames) {
+  if (j.type == "prismatic") return true;
+  std::vector<double> radius;
+  for (int f : frames) {
+    if (f < 0 || f >= static_cast<int>(hand.size()) || std::isnan(hand[f].x())) continue;
+    Eigen::Vector3d d = hand[f] - j.origin;
+    d -= d.dot(j.axis) * j.axis;
+    radius.push_back(d.norm());
+  }
+  if (radius.empty()) return false;
+  std::nth_element(radius.begin(), radius.begin() + static_cast<long>(radius.size() / 2), radius.end());
+  return radius[radius.size() / 2] >= kHandLeverNoises * kHandPointNoise;
+}
+
 bool actuated_negatively(const std::vector<double>& q) {
   std::vector<double> seen;
   for (double v : q)
@@ -617,7 +642,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   }
   // The part's track or the grip's gave q: the hand's points' is the
   // templates' second candidate.
-  if (j.source != "hand" && j.has_hand_track) j.q_hand = q_of_hand();
+  if (j.source != "hand" && j.has_hand_track && hand_has_lever(j, hand_points, hand_frames)) j.q_hand = q_of_hand();
   // q = 0 where the part was first seen; the model's reference frame maps
   // there by the joint itself.
   double q_first = kNaN;
