@@ -36,13 +36,18 @@ void fill_gaps(std::vector<double>* q) {
     for (int g = last + 1; g < n; ++g) (*q)[g] = (*q)[last];
 }
 
+// A point's offset from the axis line, across the axis.
+Eigen::Vector3d off_axis(const Eigen::Vector3d& axis, const Eigen::Vector3d& origin, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d d = p - origin;
+  return d - d.dot(axis) * axis;
+}
+
 // The joint coordinate of a point on the part (revolute: its angle about the
 // axis; prismatic: its position along it).
 double coordinate(const std::string& type, const Eigen::Vector3d& axis, const Eigen::Vector3d& origin,
                   const Eigen::Vector3d& ref_dir, const Eigen::Vector3d& p) {
   if (type == "prismatic") return axis.dot(p - origin);
-  Eigen::Vector3d d = p - origin;
-  d -= d.dot(axis) * axis;
+  const Eigen::Vector3d d = off_axis(axis, origin, p);
   const Eigen::Vector3d e2 = axis.cross(ref_dir);
   return std::atan2(d.dot(e2), d.dot(ref_dir));
 }
@@ -57,8 +62,7 @@ std::vector<double> q_from_hand(const JointEstimate& j, const std::vector<Eigen:
   Eigen::Vector3d ref_dir = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& h : hand) {
     if (std::isnan(h.x())) continue;
-    Eigen::Vector3d d = h - j.origin;
-    d -= d.dot(j.axis) * j.axis;
+    const Eigen::Vector3d d = off_axis(j.axis, j.origin, h);
     if (d.norm() > 1e-6) {
       ref_dir = d.normalized();
       break;
@@ -389,28 +393,10 @@ bool hand_has_lever(const JointEstimate& j, const std::vector<Eigen::Vector3d>& 
                     const std::vector<int>& frames) {
   if (j.type == "prismatic") return true;
   std::vector<double> radius;
-  for (int f : frames) {
-    if (f < 0 || f >= static_cast<int>(hand.size()) || std::isnan(hand[f].x())) continue;
-    Eigen::Vector3d d = hand[f] - j.origin;
-    d -= d.dot(j.axis) * j.axis;
-    radius.push_back(d.norm());
-  }
+  for (int f : frames) radius.push_back(off_axis(j.axis, j.origin, hand[f]).norm());
   if (radius.empty()) return false;
   std::nth_element(radius.begin(), radius.begin() + static_cast<long>(radius.size() / 2), radius.end());
   return radius[radius.size() / 2] >= kHandLeverNoises * kHandPointNoise;
-}
-
-bool actuated_negatively(const std::vector<double>& q) {
-  std::vector<double> seen;
-  for (double v : q)
-    if (!std::isnan(v)) seen.push_back(v);
-  if (seen.size() < 2) return false;
-  // The 2nd and 98th percentiles, as the range below: a few frames of
-  // tracker noise do not decide it.
-  std::sort(seen.begin(), seen.end());
-  const double lo = seen[static_cast<size_t>(0.02 * (seen.size() - 1))];
-  const double hi = seen[static_cast<size_t>(0.98 * (seen.size() - 1))];
-  return -lo > hi;
 }
 
 }  // namespace
@@ -658,15 +644,22 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   for (double& v : q)
     if (!std::isnan(v)) v -= q_first;
   fill_gaps(&q);
+  // The positions seen, in order (the sign and the range below read their
+  // percentiles: a few frames of tracker noise do not decide them).
+  std::vector<double> sorted = q;
+  std::sort(sorted.begin(), sorted.end());
+  const auto percentile = [&](double p) { return sorted[static_cast<size_t>(p * (sorted.size() - 1))]; };
   // The axis's sign: actuating moves the part to positive q, from its rest
   // at q = 0 (spec v1's convention, and the runtime's: a press is s_R rising
   // through a threshold, so a counter or a latching switch read on a reversed
   // joint counts its releases). A fit's own sign (from the first sample to
   // the last) is a coin toss for a knob turned and turned back.
-  if (actuated_negatively(q)) {
+  if (-percentile(0.02) > percentile(0.98)) {
     j.axis = -j.axis;
     for (double& v : q) v = -v;
     for (double& v : j.q_hand) v = -v;  // NaN stays NaN
+    std::reverse(sorted.begin(), sorted.end());
+    for (double& v : sorted) v = -v;
   }
   const int ref = track.reference_frame;
   const double q_ref = ref >= 0 && ref < n && !q.empty() ? q[ref] : 0.0;
@@ -678,12 +671,9 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // a button pressed for fewer frames than the percentile cuts off is still
   // pressed.
   {
-    std::vector<double> sorted = q;
-    std::sort(sorted.begin(), sorted.end());
-    const size_t m = sorted.size();
     const double cut = j.slide_over_turn ? 0.0 : 0.02;
-    j.range_lo = std::min(0.0, sorted[static_cast<size_t>(cut * (m - 1))]);
-    j.range_hi = std::max(0.0, sorted[static_cast<size_t>((1 - cut) * (m - 1))]);
+    j.range_lo = std::min(0.0, percentile(cut));
+    j.range_hi = std::max(0.0, percentile(1 - cut));
   }
   if (j.type == "revolute" && j.range_hi - j.range_lo > 2 * kPi) j.type = "continuous";
   if (j.range_hi - j.range_lo < 1e-6) {

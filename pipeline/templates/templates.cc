@@ -181,19 +181,33 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
                     "the effect is judged from its joint and surroundings only");
 
     const std::vector<double> prior = mapping_prior(rec.joint_type == "continuous");
-    // The effector's own joint position, where it moves (pose_shading_removed).
-    std::vector<double> q_E;
-    if (eff && movable(*eff) && !eff->q.empty()) {
-      q_E = eff->q;
-      q_E.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
-    }
+    // Each effect hypothesis's signal, once for both candidates for s_R:
+    // geometry the effector's own joint position (where it moves), the
+    // others from its pixels; a moving effector's own pixels less what its
+    // pose explains (pose_shading_removed). Empty: no such signal.
+    const auto frames_long = [&](std::vector<double> v) {
+      v.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
+      return v;
+    };
+    std::vector<std::vector<double>> signal(5);
+    std::vector<double> surround;
+    if (eff && movable(*eff) && !eff->q.empty()) signal[0] = frames_long(eff->q);
     const bool effector_moves =
-        !q_E.empty() && spread(q_E) >= 1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3);
+        !signal[0].empty() && spread(signal[0]) >= 1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3);
+    if (sig) {
+      signal[1] = frames_long(median3(sig->glow));
+      signal[2] = frames_long(median3(sig->heat));
+      signal[3] = frames_long(binned_root(sig->droplets));
+      signal[4] = frames_long(binned_root(sig->motes));
+      surround = frames_long(sig->surround);
+      if (effector_moves)
+        for (std::vector<double>* y : {&signal[1], &signal[2], &surround}) *y = pose_shading_removed(*y, signal[0]);
+    }
     // Every effect's signal fitted against one s_R.
     auto fit_hypotheses = [&](const std::vector<double>& s) {
       std::vector<Hypothesis> H(5);
       for (int k = 0; k < 5; ++k) {
-        std::vector<double> y;
+        if (signal[k].empty()) continue;
         MappingSeries S;
         S.dt = dt;
         S.r_lo = r_lo;
@@ -201,15 +215,10 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
         S.s_R = s;
         S.allow_lag = false;
         if (k == 0) {
-          if (!eff || !movable(*eff) || eff->q.empty()) continue;
-          y = eff->q;
           S.allow_lag = true;  // a driven joint follows its target
           S.max_lag_order = 2;
           S.noise_floor = 1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3);
         } else {
-          if (!sig) continue;
-          y = k == 1 ? median3(sig->glow) : k == 2 ? median3(sig->heat) : binned_root(k == 3 ? sig->droplets : sig->motes);
-          if (k <= 2 && effector_moves) y = pose_shading_removed(y, q_E);
           if (k == 3) S.allow_lag = true;  // droplets in flight outlast the flow, and take time to fall into view
           if (k >= 3) S.bin_frames = kBlobBin;  // binned_root()
           if (k == 2) {
@@ -222,7 +231,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
           // a millimetre (blobs: sqrt of m^2).
           S.noise_floor = k == 1 ? 0.5 / 255 : k == 2 ? 1e-3 : 1e-3;
         }
-        y.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
+        const std::vector<double>& y = signal[k];
         S.y = y;
         Hypothesis& h = H[k];
         h.has_signal = true;
@@ -233,8 +242,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
           // A lamp shows on its bulb or on what it lights: the better of the
           // two signals (a bulb under a hood or inside a cabinet is hidden).
           MappingSeries A = S;
-          A.y = effector_moves ? pose_shading_removed(sig->surround, q_E) : sig->surround;
-          A.y.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
+          A.y = surround;
           const MappingFitResult around = fit_mappings(A, prior);
           const double ev = around.best_index >= 0 ? std::max(0.0, around.delta_bic) : 0;
           h.signal["around"] = summary(A.y);
