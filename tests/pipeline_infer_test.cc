@@ -209,6 +209,53 @@ TEST(PipelineInfer, AnEffectorsRegistrationThatSlipsRoundItselfLeavesItFixed) {
   EXPECT_FALSE(driven.turn_taken_for_slip);
 }
 
+// A round shade (a ring 10 cm across, 8 cm tall, axis z) whose registration
+// slips round its own axis by a random walk of whole radians, and that
+// tilts (0.25 rad) about a pivot beside it (along y, 11 cm from its centre)
+// or not at all.
+PartTrack slipping_shade(double tilt, unsigned seed) {
+  const int frames = 150;
+  PartTrack t = track_of(ring(0.05, 0.08));
+  const Vector3d c = centroid(t.model), pivot(0, 0, 0.15);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  double slip = 0;
+  for (int f = 0; f < frames; ++f) {
+    slip += 0.08 * g(rng);
+    Eigen::Isometry3d spin = Eigen::Isometry3d::Identity(), swing = Eigen::Isometry3d::Identity();
+    spin.linear() = Eigen::AngleAxisd(slip, Vector3d::UnitZ()).toRotationMatrix();
+    spin.translation() = c - spin.linear() * c;
+    swing.linear() = Eigen::AngleAxisd(tilt * std::sin(kPi * f / (frames - 1)), Vector3d::UnitY()).toRotationMatrix();
+    swing.translation() = pivot - swing.linear() * pivot + 0.0005 * Vector3d(g(rng), g(rng), g(rng));
+    t.motion.push_back(swing * spin);
+    t.tracked.push_back(true);
+    t.rmse.push_back(0.001), t.inliers.push_back(1), t.conditioning.push_back(1);
+  }
+  t.frames_tracked = frames;
+  with_information(&t);
+  return t;
+}
+
+TEST(PipelineInfer, ARoundShadesSwingShowsPastItsSlip) {
+  Vector3d axis;
+  ASSERT_TRUE(near_symmetry_axis(ring(0.05, 0.08), &axis));
+  EXPECT_GT(std::abs(axis.z()), 0.99);
+  EXPECT_FALSE(near_symmetry_axis(box_faces(Vector3d(0.05, 0.03, 0.02), Vector3d::Zero()), &axis));
+  // Nobody operates the shade: its swing decides, about the pivot.
+  const JointEstimate swung = estimate_joint(slipping_shade(0.25, 7), no_hand(150), false);
+  ASSERT_EQ(swung.type, "revolute");
+  EXPECT_TRUE(swung.swing_past_slip);
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(swung.axis.dot(Vector3d::UnitY())))), 0.15);  // not z, 1.57 away
+  EXPECT_LT((swung.origin - Vector3d(0, swung.origin.y(), 0.15)).norm(), 0.01);
+  EXPECT_NEAR(swung.range_hi - swung.range_lo, 0.25, 0.03);
+  // A receptor's does not: a small button's tilts random-walk as well.
+  EXPECT_FALSE(estimate_joint(slipping_shade(0.25, 7), no_hand(150), true).swing_past_slip);
+  // Without the swing the slip is all there is: fixed, as before.
+  const JointEstimate still = estimate_joint(slipping_shade(0.0, 8), no_hand(150), false);
+  EXPECT_EQ(still.type, "fixed");
+  EXPECT_FALSE(still.swing_past_slip);
+}
+
 TEST(PipelineInfer, ADoorsPosesGiveItsHinge) {
   const int frames = 90;
   const PartTrack t = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 1);
@@ -423,6 +470,39 @@ TEST(PipelineInfer, TheGripShowsTheTwistOrThePressTheRoundPartHides) {
   const JointEstimate opened = estimate_joint(door, hand, true, &press);
   EXPECT_EQ(opened.source, "part");
   EXPECT_EQ(opened.type, "revolute");
+}
+
+TEST(PipelineInfer, TheGripAndTheHandsContactsAddTheirEvidence) {
+  // A lever turned 1.2 rad about z by a hand 3 cm from its hinge, in frames
+  // 20 to 130. Its own track shows nothing; the grip (a few fingertips, their
+  // turn barely known) reads the stroke as a slide, a little better than a
+  // turn; the hand's contacts plainly trace the arc. Together: a turn.
+  const int frames = 150;
+  std::mt19937 rng(71);
+  std::normal_distribution<double> g(0, 0.001), h(0, 0.002);
+  auto angle = [](int f) { return 1.2 * std::sin(kPi * (f - 20) / 110.0); };
+  PartTrack slide = grip(frames, 20, 130, [&](int f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Vector3d(0.03 * angle(f) + g(rng), g(rng), g(rng));
+    return T;
+  });
+  for (auto& H : slide.hessian) H.topLeftCorner<3, 3>() *= 1e-4, H.topRightCorner<3, 3>() *= 1e-2, H.bottomLeftCorner<3, 3>() *= 1e-2;
+  const PartTrack still = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0003, 72);
+  std::vector<Vector3d> turning_hand = no_hand(frames), still_hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) {
+    turning_hand[f] = Vector3d(0.03 * std::cos(angle(f)) + h(rng), 0.03 * std::sin(angle(f)) + h(rng), 0.02 + h(rng));
+    still_hand[f] = Vector3d(0.03 + h(rng), h(rng), 0.02 + h(rng));
+  }
+  const JointEstimate alone = estimate_joint(still, still_hand, true, &slide);
+  ASSERT_EQ(alone.source, "grip");
+  EXPECT_EQ(alone.type, "prismatic");
+  EXPECT_FALSE(alone.grip_with_hand);
+  const JointEstimate both = estimate_joint(still, turning_hand, true, &slide);
+  EXPECT_EQ(both.from_grip.type, "prismatic");
+  EXPECT_EQ(both.from_hand.type, "revolute");
+  EXPECT_EQ(both.source, "grip");
+  EXPECT_EQ(both.type.substr(0, 4) == "cont" ? "revolute" : both.type, "revolute");
+  EXPECT_TRUE(both.grip_with_hand);
 }
 
 TEST(PipelineInfer, TheGripIsTheHandsPointsNearItsContactWhileItHolds) {

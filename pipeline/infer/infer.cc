@@ -67,6 +67,8 @@ ojson joint_report(const JointEstimate& j) {
   if (j.assumed_moving) r["assumed_moving"] = true;
   if (j.slide_over_turn) r["slide_over_turn"] = true;
   if (j.turn_taken_for_slip) r["turn_taken_for_slip"] = true;
+  if (j.swing_past_slip) r["swing_past_slip"] = true;
+  if (j.grip_with_hand) r["grip_with_hand"] = true;
   if (j.type != "fixed") {
     r["axis"] = vec(j.axis);
     r["origin"] = vec(j.origin);

@@ -5,6 +5,8 @@
 #include <limits>
 #include <set>
 
+#include <Eigen/Eigenvalues>
+
 #include "pipeline/cloud/icp.h"
 
 namespace efc::pipeline {
@@ -233,10 +235,57 @@ Eigen::Matrix<double, 6, 6> sample_information(const PartTrack& track, int f, co
   return 0.5 * (info + info.transpose());
 }
 
+// The rotation r less its twist about the body axis `axis` (unit): the
+// swing that remains when r = swing * twist, twist a turn about `axis`.
+Eigen::Quaterniond without_twist(const Eigen::Quaterniond& r, const Eigen::Vector3d& axis) {
+  const double along = r.vec().dot(axis);
+  Eigen::Quaterniond twist(r.w(), along * axis.x(), along * axis.y(), along * axis.z());
+  if (twist.norm() < 1e-12) return r;  // a half turn across the axis: no twist to take out
+  twist.normalize();
+  return (r * twist.conjugate()).normalized();
+}
+
+// The information of a sample with its turn about the object-frame
+// direction `axis` a free nuisance (the Schur complement): what the other
+// directions still say once nothing is known about that one.
+Eigen::Matrix<double, 6, 6> marginalised(const Eigen::Matrix<double, 6, 6>& info, const Eigen::Vector3d& axis) {
+  Eigen::Matrix<double, 6, 1> e = Eigen::Matrix<double, 6, 1>::Zero();
+  e.head<3>() = axis.normalized();
+  const Eigen::Matrix<double, 6, 1> We = info * e;
+  const double eWe = e.dot(We);
+  if (!(eWe > 1e-12)) return info;
+  const Eigen::Matrix<double, 6, 6> out = info - We * We.transpose() / eWe;
+  return 0.5 * (out + out.transpose());
+}
+
 }  // namespace
 
+bool near_symmetry_axis(const Cloud& model, Eigen::Vector3d* axis) {
+  if (!model.has_normals() || model.size() < kMinModelPoints) return false;
+  // A turn about a through the centroid c moves each point by a x d (d =
+  // p - c); the surface shows n . (a x d) = a . (d x n) of it. Shown over
+  // moved, a^T M a / a^T N a, is least at the smallest generalised
+  // eigenvector of (M, N).
+  const Eigen::Vector3d c = centroid(model);
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero(), N = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < model.size(); ++i) {
+    const Eigen::Vector3d d = model.points[i] - c;
+    const Eigen::Vector3d m = d.cross(model.normals[i]);
+    M += m * m.transpose();
+    N += d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose();
+  }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> solver(M, N);
+  if (solver.info() != Eigen::Success) return false;
+  const Eigen::Vector3d a = solver.eigenvectors().col(0).normalized();
+  if (!a.allFinite()) return false;
+  if (visibility(model, "revolute", a, c) >= kSlipVisibility) return false;
+  *axis = a;
+  return true;
+}
+
 Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int bin_frames,
-                   std::vector<std::vector<int>>* frames_of_sample, bool drop_unconstrained) {
+                   std::vector<std::vector<int>>* frames_of_sample, bool drop_unconstrained,
+                   const Eigen::Vector3d* twist_axis) {
   const int n = static_cast<int>(track.motion.size());
   std::vector<int> frames;
   std::vector<Eigen::Vector3d> rot, pos;
@@ -244,8 +293,11 @@ Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int 
   for (int f = 0; f < n; ++f) {
     if (!track.tracked[f]) continue;
     frames.push_back(f);
-    quat.emplace_back(track.motion[f].linear());
+    Eigen::Quaterniond r(track.motion[f].linear());
+    if (twist_axis) r = without_twist(r, *twist_axis);
+    quat.push_back(r);
     rot.push_back(rotation_vector(quat.back()));
+    // A twist about an axis through the centroid leaves it where it is.
     pos.push_back(track.motion[f] * centroid);
   }
   std::vector<double> from_centroid;
@@ -280,7 +332,11 @@ Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int 
     if (!bin.empty() && c.dot(sum_q) < 0) c = -c;
     sum_q += c;
     sum_p += pos[i];
-    if (informed) sum_info += sample_information(track, f, centroid, drop_unconstrained);
+    if (informed) {
+      Eigen::Matrix<double, 6, 6> info = sample_information(track, f, centroid, drop_unconstrained);
+      if (twist_axis) info = marginalised(info, track.motion[f].linear() * *twist_axis);
+      sum_info += info;
+    }
     bin.push_back(f);
     last = f;
   }
@@ -503,19 +559,42 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   const bool part_reliable = track.model.size() >= kMinModelPoints;
   const bool part_visible = j.has_part_track && part_reliable &&
                             (j.from_part.type == "fixed" || j.part_visibility >= kMinVisibility);
-  bool part_decides = part_visible && j.from_part.type != "fixed";
+  // A near-symmetric part nobody operates (a fan's or a lamp's round head)
+  // whose own track shows no motion, or only a turn about itself that its
+  // shape barely shows: its registration slips round its symmetry axis,
+  // and that slip, a random walk of whole radians, can hide the swing a
+  // function or a push gives it. Its track with the twist about that axis
+  // left out (part_samples()) shows the swing; where it is one about a
+  // hinge beside the part, plainly shown by its shape, no slip makes it,
+  // and it decides. Not where the whole track shows such a hinge already
+  // (a lid's: better than its swing less an in-plane twist does), and not
+  // for a receptor (a small button's tilts random-walk too, and without
+  // its twist they read as a swing). bench/README: what was tried.
+  Eigen::Vector3d symmetry = Eigen::Vector3d::Zero();
+  Articulation swing;
+  const bool part_shows_motion = part_visible && j.from_part.type != "fixed";
+  const bool part_shows_a_slip =
+      part_shows_motion && j.from_part.type == "revolute" && turn_a_slip_could_be(track.model, j.from_part);
+  if (!operated && (!part_shows_motion || part_shows_a_slip) && j.has_part_track && part_reliable &&
+      near_symmetry_axis(track.model, &symmetry)) {
+    std::vector<std::vector<int>> swing_frames;
+    swing = estimate_articulation(part_samples(track, model_centre, kPartBin, &swing_frames, true, &symmetry));
+    j.swing_past_slip = swing.type == "revolute" && !turns_about_itself(track.model, swing.axis, swing.origin) &&
+                        visibility(track.model, "revolute", swing.axis, swing.origin) >= kSlipVisibility;
+  }
+  bool part_decides = j.swing_past_slip || part_shows_motion;
   // The grip speaks where the part's own track cannot show the motion, or
   // shows only a turn its registration can slip into, and its own motion
   // shows on the hand's shape.
-  const bool part_may_slip =
-      part_decides && j.from_part.type == "revolute" && turn_a_slip_could_be(track.model, j.from_part);
-  const bool grip_decides = j.has_grip_track && j.from_grip.type != "fixed" && j.grip_visibility >= kMinVisibility &&
-                            (!part_decides || part_may_slip);
+  const bool part_may_slip = !j.swing_past_slip && part_shows_a_slip;
+  const bool grip_decides = !j.swing_past_slip && j.has_grip_track && j.from_grip.type != "fixed" &&
+                            j.grip_visibility >= kMinVisibility && (!part_decides || part_may_slip);
   if (grip_decides) part_decides = false;
   const bool hand_decides = !part_decides && !grip_decides && j.has_hand_track && j.from_hand.type != "fixed";
   std::string type = "fixed";
   const Articulation* decider = nullptr;
-  if (part_decides) type = j.from_part.type, decider = &j.from_part;
+  if (j.swing_past_slip) type = "revolute", decider = &swing;
+  else if (part_decides) type = j.from_part.type, decider = &j.from_part;
   else if (grip_decides) type = j.from_grip.type, decider = &j.from_grip;
   else if (hand_decides) type = j.from_hand.type, decider = &j.from_hand;
   else if (j.has_part_track) decider = &j.from_part;
@@ -523,6 +602,23 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   if (decider) {
     j.confidence = type == "revolute" ? decider->p_revolute : type == "prismatic" ? decider->p_prismatic : decider->p_fixed;
     if (type == "fixed" && j.has_part_track && !part_visible) j.confidence = 1.0;  // nothing shows a motion
+  }
+  // The grip's points and the hand's contacts are two measurements of the
+  // same hand's motion (its depth registered, its detected keypoints).
+  // Where the hand's own track shows the part moving too, their evidence
+  // adds, as the part's and the hand's do in the fused BIC: a lever's grip,
+  // a few fingertips registered over eight samples, can read its arc as a
+  // slide that the hand's contacts plainly show turning. Where the hand's
+  // track shows nothing (a press smaller than its noise), its fits are
+  // noise, and the grip speaks alone.
+  if (grip_decides && j.has_hand_track && j.from_hand.type != "fixed") {
+    const double prismatic = bic_of(j.from_grip.prismatic) + bic_of(j.from_hand.prismatic);
+    const double revolute = bic_of(j.from_grip.revolute) + bic_of(j.from_hand.revolute);
+    if (std::isfinite(std::min(prismatic, revolute))) {
+      type = revolute <= prismatic ? "revolute" : "prismatic";
+      j.grip_with_hand = true;
+      j.confidence = 1 / (1 + std::exp(-0.5 * std::abs(prismatic - revolute)));
+    }
   }
   // A receptor the hand held (its contacts make a track) whose motion
   // neither track shows: a button pressed under the finger, a knob turned
@@ -588,7 +684,9 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     const PartTrack& decided = grip_decides ? *grip : track;
     std::vector<std::vector<int>> frames;
     const Articulation a = estimate_articulation_as(
-        part_samples(decided, grip_decides ? grip_centre : model_centre, 1, &frames), type);
+        part_samples(decided, grip_decides ? grip_centre : model_centre, 1, &frames, false,
+                     j.swing_past_slip && !grip_decides ? &symmetry : nullptr),
+        type);
     j.source = grip_decides ? "grip" : "part";
     j.type = type;
     j.axis = a.axis;
@@ -596,7 +694,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     for (size_t k = 0; k < frames.size() && k < a.q.size(); ++k)
       for (int f : frames[k]) q[f] = a.q[k];
     // The slip rules read the part's own track.
-    if (!grip_decides && type == "revolute" && slides_under_a_slip(track.model, j.from_part, part_frames, a, frames)) {
+    if (!grip_decides && !j.swing_past_slip && type == "revolute" && slides_under_a_slip(track.model, j.from_part, part_frames, a, frames)) {
       j.type = "prismatic";
       j.slide_over_turn = true;
       size_t peak = 0;
@@ -607,7 +705,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       std::fill(q.begin(), q.end(), kNaN);
       for (size_t k = 0; k < frames.size() && k < a.slide.size(); ++k)
         for (int f : frames[k]) q[f] = sign * a.slide[k];
-    } else if (!grip_decides && type == "revolute" && !operated && !j.has_hand_track && turn_a_slip_could_be(track.model, a)) {
+    } else if (!grip_decides && !j.swing_past_slip && type == "revolute" && !operated && !j.has_hand_track && turn_a_slip_could_be(track.model, a)) {
       // Nobody operates it, and the turn is one its registration can slip
       // into (a round LED, a burner, a grille's disc): the turn is the slip
       // and the part stays where it is. A driven lid or door turns about a

@@ -54,6 +54,14 @@ struct JointEstimate {
   // fixed, the turn taken for its registration slipping round a
   // near-symmetry.
   bool turn_taken_for_slip = false;
+  // A near-symmetric part whose track, less its twist about its symmetry
+  // axis, swings about a hinge beside it that its shape plainly shows: the
+  // swing decides (a door's plate slipping round its normal, a round
+  // shade's spin), whatever the slip made of the whole track.
+  bool swing_past_slip = false;
+  // The grip decided, and the hand's contacts showed the part moving too:
+  // revolute or prismatic by the two tracks' BICs together.
+  bool grip_with_hand = false;
   int hand_samples = 0;
   // How much of the part track's motion its shape can show (visibility()).
   double part_visibility = 0;
@@ -93,8 +101,23 @@ Eigen::Isometry3d joint_motion(const JointEstimate& joint, double q);
 // frames_of_sample[k] lists the frames averaged into sample k. Each sample
 // carries its information (Track::information) from the registrations' Hessians;
 // `drop_unconstrained` gives none to the directions the tracker left alone.
+//
+// `twist_axis` (a unit direction of the model through `centroid`, or null):
+// each frame's turn about that axis of the part's own (its twist, by the
+// swing-twist decomposition) is taken out of its rotation, and the
+// information about it marginalised away. The turn a near-symmetric
+// shape's registration slips into random-walks there over the frames (a
+// lamp head's spin about its round shade, whole radians, while the head
+// tilts a tenth of one), and it would otherwise be the likeliest motion.
 Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int bin_frames,
-                   std::vector<std::vector<int>>* frames_of_sample, bool drop_unconstrained = false);
+                   std::vector<std::vector<int>>* frames_of_sample, bool drop_unconstrained = false,
+                   const Eigen::Vector3d* twist_axis = nullptr);
+
+// The axis through the model's centroid about which a turn shows least on
+// its surface (visibility()), when it shows less than kSlipVisibility: the
+// symmetry axis of a round shade, a knob, a button. False for a shape every
+// turn of which shows (a door, a lever, a box).
+bool near_symmetry_axis(const Cloud& model, Eigen::Vector3d* axis);
 
 // hand_points[f]: the hand's contact point in the object frame in the frames
 // it holds this part (NaN elsewhere). `operated`: someone may move the part
