@@ -217,6 +217,7 @@ int main(int argc, char** argv) {
       efc::pipeline::TrackOptions grip_tracking;
       grip_tracking.carry_unseen_motion = false;
       grip_tracking.reacquire_leaps = false;
+      grip_tracking.restart_from_reference = false;
       for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
         bool held = false;
         for (const Eigen::Vector3d& h : hand_points[p]) held |= !std::isnan(h.x());

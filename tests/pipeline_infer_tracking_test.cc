@@ -134,6 +134,42 @@ TEST(PipelineInferTracking, ALidSnappedOpenIsFoundAgain) {
   for (int f = 10; f < 20; ++f) EXPECT_FALSE(lost.tracked[f]) << f;
 }
 
+TEST(PipelineInferTracking, WithinAGraspTheChainDoesNotRestartFromTheReference) {
+  // The box tilts 0.04 rad a frame about x to 0.8 rad (frames 0 to 20),
+  // then shows its rest pose again in frame 21 (out of ICP's reach from
+  // where the chain is), is unseen for five frames, and shows its rest
+  // pose again from frame 27. A part's tracker may start any frame from
+  // the reference pose and so finds frame 21 at rest. The grip's does not:
+  // a hand that leaps back within a grasp is not the hand it held (a
+  // hand's palm looks much alike a quarter turn on, where a reference
+  // start can win by a few points); after a gap it is a new grasp and may.
+  const int frames = 33;
+  std::vector<Cloud> clouds;
+  for (int f = 0; f < frames; ++f) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    if (f <= 20) pose.linear() = Eigen::AngleAxisd(0.04 * f, Vector3d::UnitX()).toRotationMatrix();
+    clouds.push_back(f >= 22 && f < 27 ? Cloud() : box_surface(pose));
+  }
+  const std::vector<Eigen::Isometry3d> to_object(frames, Eigen::Isometry3d::Identity());
+  TrackOptions part;
+  part.reacquire_leaps = false;
+  TrackOptions grip = part;
+  grip.restart_from_reference = false;
+  const PartTrack restarted = track_clouds(clouds, to_object, part), held = track_clouds(clouds, to_object, grip);
+  for (const PartTrack* t : {&restarted, &held}) {
+    ASSERT_EQ(t->reference_frame, 0);
+    ASSERT_TRUE(t->tracked[20]);
+    EXPECT_NEAR(Eigen::AngleAxisd(t->motion[20].linear()).angle(), 0.8, 0.02);
+    for (int f = 27; f < frames; ++f) {
+      ASSERT_TRUE(t->tracked[f]) << f;
+      EXPECT_LT(Eigen::AngleAxisd(t->motion[f].linear()).angle(), 0.02) << f;
+    }
+  }
+  ASSERT_TRUE(restarted.tracked[21]);
+  EXPECT_LT(Eigen::AngleAxisd(restarted.motion[21].linear()).angle(), 0.02);
+  EXPECT_FALSE(held.tracked[21] && Eigen::AngleAxisd(held.motion[21].linear()).angle() < 0.1);
+}
+
 TEST(PipelineInferTracking, ADrawerSnappedOutIsFoundAgainAsASlide) {
   // 30 cm out along -y in one frame, clear of where it was: found again as
   // that slide, not as a turn.

@@ -257,6 +257,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     TrackOptions grip_tracking;
     grip_tracking.carry_unseen_motion = false;  // a finger's roll is not a motion
     grip_tracking.reacquire_leaps = false;       // a leap of the hand is a new grasp
+    grip_tracking.restart_from_reference = false;  // within a grasp, the hand moves on from where it was
     std::atomic<size_t> next{0};
     auto worker = [&]() {
       for (size_t k = next++; k < held.size(); k = next++) {

@@ -111,7 +111,9 @@ void register_frames(const std::vector<Cloud>& clouds, const std::vector<Eigen::
         starts.insert(starts.begin(), step * to_model[last_good]);
       }
     }
-    if (!from_seed) starts.push_back(Eigen::Isometry3d::Identity());  // the reference configuration
+    // The reference configuration (TrackOptions::restart_from_reference).
+    if (!from_seed && (options.restart_from_reference || last_good < 0 || std::abs(f - last_good) > kRegraspFrames))
+      starts.push_back(Eigen::Isometry3d::Identity());
     const Cloud c = in_object(clouds, f, to_object);
     out->tracked[f] = false;
     to_model[f] = starts.front();

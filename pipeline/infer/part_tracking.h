@@ -66,7 +66,16 @@ struct TrackOptions {
   // contact are seen only while it holds, and a leap there is a new grasp,
   // not a held state to find again.
   bool reacquire_leaps = true;
+  // Each frame may also start from the reference configuration (a chain
+  // that lost the part finds it again). Not the grip's within a grasp: a
+  // hand's fingers and palm look much alike turned a quarter turn on a
+  // knob, and where the hand pauses the reference start's match wins by a
+  // few points; a hand holding a part moves on from where it was. A frame
+  // more than kRegraspFrames after the last registered one is a new grasp
+  // and may start there.
+  bool restart_from_reference = true;
 };
+constexpr int kRegraspFrames = 3;
 
 // The same for any rigid thing seen frame by frame: clouds[f] in the world
 // frame of poses.txt (empty where unseen). `part` is left -1.
