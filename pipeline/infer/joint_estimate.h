@@ -6,9 +6,12 @@
 // part's own track decides when it can: when its points show the motion (or
 // show that there is none). Where they cannot (a round knob whose turn the
 // depth does not resolve, a button hidden under the finger), the grip
-// decides, and where it shows nothing either, the hand's points. A part
-// none shows moving is fixed. The tracks' scores, and the part's and the
-// hand's points' sum, are in the report.
+// decides (with the hand's points' evidence added where they show the part
+// moving too), and where it shows nothing either, the hand's points. A
+// round part nobody operates whose registration slips round its own axis
+// is typed again with that twist left out, so that a swing the slip hid
+// shows. A part none shows moving is fixed. The tracks' scores, and the
+// part's and the hand's points' sum, are in the report.
 #pragma once
 
 #include <Eigen/Geometry>
