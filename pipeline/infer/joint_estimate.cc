@@ -680,12 +680,15 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       }
     }
   } else if (grip_decides || geometry_from_part) {
-    // The chosen model fitted frame by frame on the track that decided.
+    // The chosen model fitted frame by frame on the track that decided. A
+    // swing past a slip: on the poses the typing saw, the twist left out and
+    // the directions the tracker left alone weightless (with them, s0058's
+    // fan head's hinge came out 80 degrees off; without, 34).
     const PartTrack& decided = grip_decides ? *grip : track;
     std::vector<std::vector<int>> frames;
     const Articulation a = estimate_articulation_as(
-        part_samples(decided, grip_decides ? grip_centre : model_centre, 1, &frames, false,
-                     j.swing_past_slip && !grip_decides ? &symmetry : nullptr),
+        part_samples(decided, grip_decides ? grip_centre : model_centre, 1, &frames, j.swing_past_slip,
+                     j.swing_past_slip ? &symmetry : nullptr),
         type);
     j.source = grip_decides ? "grip" : "part";
     j.type = type;
