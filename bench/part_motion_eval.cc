@@ -214,10 +214,7 @@ int main(int argc, char** argv) {
     auto operated = [&](int p) { return roles[p] == "receptor" || roles[p] == "receptor+effector"; };
     std::vector<std::unique_ptr<efc::pipeline::PartTrack>> grips(obs.parts.size());
     if (!obs.hand_clouds.empty()) {
-      efc::pipeline::TrackOptions grip_tracking;
-      grip_tracking.carry_unseen_motion = false;
-      grip_tracking.reacquire_leaps = false;
-      grip_tracking.restart_from_reference = false;
+      const efc::pipeline::TrackOptions grip_tracking = efc::pipeline::grip_tracking_options();
       for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
         bool held = false;
         for (const Eigen::Vector3d& h : hand_points[p]) held |= !std::isnan(h.x());

@@ -4,6 +4,14 @@
 
 namespace efc::pipeline {
 
+TrackOptions grip_tracking_options() {
+  TrackOptions o;
+  o.carry_unseen_motion = false;
+  o.reacquire_leaps = false;
+  o.restart_from_reference = false;
+  return o;
+}
+
 std::vector<Cloud> grip_clouds(const Observations& obs, const std::vector<Eigen::Vector3d>& contacts,
                                const std::vector<Eigen::Isometry3d>& to_object) {
   const size_t n = obs.hand_clouds.size();

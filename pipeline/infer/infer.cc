@@ -254,10 +254,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
       for (const Eigen::Vector3d& h : hand_points[p]) any |= !std::isnan(h.x());
       if (tracks[p] && operated(p) && any) held.push_back(p);
     }
-    TrackOptions grip_tracking;
-    grip_tracking.carry_unseen_motion = false;  // a finger's roll is not a motion
-    grip_tracking.reacquire_leaps = false;       // a leap of the hand is a new grasp
-    grip_tracking.restart_from_reference = false;  // within a grasp, the hand moves on from where it was
+    const TrackOptions grip_tracking = grip_tracking_options();
     std::atomic<size_t> next{0};
     auto worker = [&]() {
       for (size_t k = next++; k < held.size(); k = next++) {

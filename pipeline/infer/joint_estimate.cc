@@ -76,7 +76,7 @@ std::vector<double> q_from_hand(const JointEstimate& j, const std::vector<Eigen:
   int last_seen = -100;
   for (int f = 0; f < n; ++f) {
     if (std::isnan(hand[f].x())) {
-      if (in_grasp && f - last_seen > 3) in_grasp = false;  // released
+      if (in_grasp && f - last_seen > kRegraspFrames) in_grasp = false;  // released
       continue;
     }
     double raw = coordinate(j.type, j.axis, j.origin, ref_dir, hand[f]);

@@ -75,6 +75,9 @@ struct TrackOptions {
   // and may start there.
   bool restart_from_reference = true;
 };
+// A hand unseen on a part for more than this many frames has let go of it:
+// its next frame there is a new grasp (the grip's tracking, and the joint
+// position read from the hand's contacts).
 constexpr int kRegraspFrames = 3;
 
 // The same for any rigid thing seen frame by frame: clouds[f] in the world
