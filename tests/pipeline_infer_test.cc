@@ -256,6 +256,58 @@ TEST(PipelineInfer, ARoundShadesSwingShowsPastItsSlip) {
   EXPECT_FALSE(still.swing_past_slip);
 }
 
+// A flat square button (2.4 cm, 6 mm deep, its face's normal y) whose
+// registration drifts 2 cm across its face, where only its thin sides hold
+// it, while it is pressed 4 mm along its normal twice: the drift is the
+// larger slide, but one its shape barely shows; the press is the joint.
+TEST(PipelineInfer, AFlatButtonsDriftAcrossItsFaceIsNotItsSlide) {
+  const int frames = 150;
+  // Its face (y = -3 mm, facing the camera) and a strip of its four sides
+  // (it stands 2 mm proud of the panel), sampled every 2 mm.
+  Cloud button;
+  for (int i = -6; i <= 6; ++i)
+    for (int k = -6; k <= 6; ++k) {
+      button.points.push_back(Vector3d(0.002 * i, -0.003, 0.002 * k));
+      button.normals.push_back(-Vector3d::UnitY());
+    }
+  for (int i = -6; i <= 6; ++i)
+    for (int side : {-1, 1}) {
+      button.points.push_back(Vector3d(side * 0.012, -0.002, 0.002 * i));
+      button.normals.push_back(Vector3d(side, 0, 0));
+      button.points.push_back(Vector3d(0.002 * i, -0.002, side * 0.012));
+      button.normals.push_back(Vector3d(0, 0, side));
+    }
+  PartTrack t = track_of(button);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g(0, 1);
+  for (int f = 0; f < frames; ++f) {
+    const bool pressed = (f >= 40 && f < 60) || (f >= 100 && f < 120);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Vector3d(0.02 * std::sin(kPi * f / (frames - 1)) + 0.002 * g(rng),
+                               (pressed ? 0.004 : 0.0) + 0.0003 * g(rng), 0.0003 * g(rng));
+    t.motion.push_back(T);
+    t.tracked.push_back(true);
+    t.rmse.push_back(0.001), t.inliers.push_back(1), t.conditioning.push_back(1);
+    // Known to 3 mm across the face along x, to 1 mm along the normal.
+    Eigen::Matrix<double, 6, 1> d;
+    d << Vector3d::Constant(1 / (0.005 * 0.005)), 1 / (0.003 * 0.003), 1 / (0.001 * 0.001), 1 / (0.001 * 0.001);
+    t.hessian.push_back(Eigen::Matrix<double, 6, 6>(d.asDiagonal()) * 0.001 * 0.001);
+    t.hessian_center.push_back(Vector3d::Zero());
+    t.hessian_scale.push_back(0.01);
+  }
+  t.frames_tracked = frames;
+  EXPECT_LT(visibility(t.model, "prismatic", Vector3d::UnitX(), Vector3d::Zero()), kSlipVisibility);
+  EXPECT_GT(visibility(t.model, "prismatic", Vector3d::UnitY(), Vector3d::Zero()), kSlipVisibility);
+  const JointEstimate j = estimate_joint(t, no_hand(frames));
+  ASSERT_EQ(j.type, "prismatic");
+  EXPECT_EQ(j.source, "part");
+  EXPECT_TRUE(j.plain_slide);
+  EXPECT_GT(std::abs(j.axis.dot(Vector3d::UnitY())), 0.99) << j.axis.transpose();
+  EXPECT_NEAR(j.range_hi - j.range_lo, 0.004, 0.0015);
+  ASSERT_EQ(static_cast<int>(j.q.size()), frames);
+  EXPECT_NEAR(std::abs(j.q[50] - j.q[80]), 0.004, 0.0015);  // pressed against at rest
+}
+
 TEST(PipelineInfer, ADoorsPosesGiveItsHinge) {
   const int frames = 90;
   const PartTrack t = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 1);

@@ -69,6 +69,7 @@ ojson joint_report(const JointEstimate& j) {
   if (j.turn_taken_for_slip) r["turn_taken_for_slip"] = true;
   if (j.swing_past_slip) r["swing_past_slip"] = true;
   if (j.grip_with_hand) r["grip_with_hand"] = true;
+  if (j.plain_slide) r["plain_slide"] = true;
   if (j.type != "fixed") {
     r["axis"] = vec(j.axis);
     r["origin"] = vec(j.origin);

@@ -455,6 +455,37 @@ bool hand_has_lever(const JointEstimate& j, const std::vector<Eigen::Vector3d>& 
   return radius[radius.size() / 2] >= kHandLeverNoises * kHandPointNoise;
 }
 
+// The slide a part's shape shows best: along the principal direction of
+// its normals (the largest eigenvector of sum n n^T: a button's face
+// normal), as a projector onto that line (object frame, the model's
+// reference configuration). Zero where even that slide shows less than
+// kSlipVisibility (a round rod along its length).
+Eigen::Matrix3d best_shown_slide(const Cloud& model) {
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& n : model.normals) scatter += n * n.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  const Eigen::Vector3d a = eig.eigenvectors().col(2);
+  if (visibility(model, "prismatic", a, Eigen::Vector3d::Zero()) < kSlipVisibility) return Eigen::Matrix3d::Zero();
+  return a * a.transpose();
+}
+
+// The track with each sample's information kept only about its position
+// along `P`'s directions (a projector): a slide elsewhere, or a turn,
+// costs nothing (a slide's axis is what is asked; the registration's
+// spin of a small part would otherwise swamp the noise scale).
+Track with_slides_only_along(Track t, const Eigen::Matrix3d& P) {
+  Eigen::Matrix<double, 6, 6> T = Eigen::Matrix<double, 6, 6>::Zero();
+  T.block<3, 3>(3, 3) = P;
+  for (Eigen::Matrix<double, 6, 6>& W : t.information) W = T.transpose() * W * T;
+  // The positions' motion along the other directions taken out too, so
+  // that the fits' unweighted starts look for the slide where it counts.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : t.positions) mean += p;
+  if (!t.positions.empty()) mean /= static_cast<double>(t.positions.size());
+  for (Eigen::Vector3d& p : t.positions) p = mean + P * (p - mean);
+  return t;
+}
+
 }  // namespace
 
 Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
@@ -696,6 +727,33 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.origin = a.origin;
     for (size_t k = 0; k < frames.size() && k < a.q.size(); ++k)
       for (int f : frames[k]) q[f] = a.q[k];
+    // A slide the part's own track found along a direction its shape barely
+    // shows (a flat button's face sliding in its own plane, where only its
+    // edges hold the registration and it wanders by centimetres) may hide
+    // the slide its shape shows plainly (the press along the face's normal,
+    // a few millimetres): the in-plane slide is taken for a slip, and the
+    // slide for the one the shape shows best, fitted on the track's
+    // positions along that direction alone (its face's normal; the type
+    // kept: the typing saw the part slide). A drawer's pull shows plainly on
+    // its front face (visibility about 1) and is never refitted.
+    const Eigen::Matrix3d best_shown =
+        !grip_decides && type == "prismatic" && track.model.has_normals() &&
+                visibility(track.model, "prismatic", a.axis, a.origin) < kSlipVisibility
+            ? best_shown_slide(track.model)
+            : Eigen::Matrix3d::Zero();
+    if (best_shown.trace() > 0.5) {
+      std::vector<std::vector<int>> one_by_one;
+      const Articulation b = estimate_articulation_as(
+          with_slides_only_along(part_samples(track, model_centre, 1, &one_by_one), best_shown), "prismatic");
+      if (b.prismatic.valid && visibility(track.model, "prismatic", b.axis, b.origin) >= kSlipVisibility) {
+        j.axis = b.axis;
+        j.origin = b.origin;
+        j.plain_slide = true;
+        std::fill(q.begin(), q.end(), kNaN);
+        for (size_t k = 0; k < one_by_one.size() && k < b.q.size(); ++k)
+          for (int f : one_by_one[k]) q[f] = b.q[k];
+      }
+    }
     // The slip rules read the part's own track.
     if (!grip_decides && !j.swing_past_slip && type == "revolute" && slides_under_a_slip(track.model, j.from_part, part_frames, a, frames)) {
       j.type = "prismatic";

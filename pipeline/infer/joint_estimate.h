@@ -10,7 +10,10 @@
 // moving too), and where it shows nothing either, the hand's points. A
 // round part nobody operates whose registration slips round its own axis
 // is typed again with that twist left out, so that a swing the slip hid
-// shows. A part none shows moving is fixed. The tracks' scores, and the
+// shows; a slide along a direction the part's shape barely shows (a flat
+// button's face wandering in its own plane) is taken for a slip, and the
+// slide along the direction it shows best for the joint. A part none
+// shows moving is fixed. The tracks' scores, and the
 // part's and the hand's points' sum, are in the report.
 #pragma once
 
@@ -62,6 +65,11 @@ struct JointEstimate {
   // swing decides (a door's plate slipping round its normal, a round
   // shade's spin), whatever the slip made of the whole track.
   bool swing_past_slip = false;
+  // A slide the part's track found along a direction its shape barely
+  // shows, taken for a slip and replaced by the slide along the direction
+  // its shape shows best (a button's press under its face's in-plane
+  // drift).
+  bool plain_slide = false;
   // The grip decided, and the hand's contacts showed the part moving too:
   // revolute or prismatic by the two tracks' BICs together.
   bool grip_with_hand = false;
