@@ -28,14 +28,14 @@ constexpr double kGripRadius = 0.10;
 // per frame, the hand's points (Observations::hand_clouds, world frame)
 // within kGripRadius of that point; empty where the hand does not hold the
 // part or the recording has no hand mask.
+std::vector<Cloud> grip_clouds(const Observations& obs, const std::vector<Eigen::Vector3d>& contacts,
+                               const std::vector<Eigen::Isometry3d>& to_object);
+
 // How the grip's clouds are tracked (track_clouds()): only the motion a
 // registration saw is carried to the next frame (a finger's roll is not a
 // motion), a leap is not searched for (it is a new grasp), and within a
 // grasp no frame restarts from the reference pose (the hand moves on from
 // where it was). efc infer and bench/part_motion_eval share it.
 TrackOptions grip_tracking_options();
-
-std::vector<Cloud> grip_clouds(const Observations& obs, const std::vector<Eigen::Vector3d>& contacts,
-                               const std::vector<Eigen::Isometry3d>& to_object);
 
 }  // namespace efc::pipeline

@@ -457,16 +457,17 @@ bool hand_has_lever(const JointEstimate& j, const std::vector<Eigen::Vector3d>& 
 
 // The slide a part's shape shows best: along the principal direction of
 // its normals (the largest eigenvector of sum n n^T: a button's face
-// normal), as a projector onto that line (object frame, the model's
-// reference configuration). Zero where even that slide shows less than
-// kSlipVisibility (a round rod along its length).
-Eigen::Matrix3d best_shown_slide(const Cloud& model) {
+// normal; object frame, the model's reference configuration). False where
+// even that slide shows less than kSlipVisibility (a round rod along its
+// length).
+bool best_shown_slide(const Cloud& model, Eigen::Vector3d* axis) {
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (const Eigen::Vector3d& n : model.normals) scatter += n * n.transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
   const Eigen::Vector3d a = eig.eigenvectors().col(2);
-  if (visibility(model, "prismatic", a, Eigen::Vector3d::Zero()) < kSlipVisibility) return Eigen::Matrix3d::Zero();
-  return a * a.transpose();
+  if (visibility(model, "prismatic", a, Eigen::Vector3d::Zero()) < kSlipVisibility) return false;
+  *axis = a;
+  return true;
 }
 
 // The track with each sample's information kept only about its position
@@ -717,10 +718,9 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     // fan head's hinge came out 80 degrees off; without, 34).
     const PartTrack& decided = grip_decides ? *grip : track;
     std::vector<std::vector<int>> frames;
-    const Articulation a = estimate_articulation_as(
-        part_samples(decided, grip_decides ? grip_centre : model_centre, 1, &frames, j.swing_past_slip,
-                     j.swing_past_slip ? &symmetry : nullptr),
-        type);
+    const Track samples = part_samples(decided, grip_decides ? grip_centre : model_centre, 1, &frames,
+                                       j.swing_past_slip, j.swing_past_slip ? &symmetry : nullptr);
+    const Articulation a = estimate_articulation_as(samples, type);
     j.source = grip_decides ? "grip" : "part";
     j.type = type;
     j.axis = a.axis;
@@ -736,22 +736,21 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     // positions along that direction alone (its face's normal; the type
     // kept: the typing saw the part slide). A drawer's pull shows plainly on
     // its front face (visibility about 1) and is never refitted.
-    const Eigen::Matrix3d best_shown =
-        !grip_decides && type == "prismatic" && track.model.has_normals() &&
-                visibility(track.model, "prismatic", a.axis, a.origin) < kSlipVisibility
-            ? best_shown_slide(track.model)
-            : Eigen::Matrix3d::Zero();
-    if (best_shown.trace() > 0.5) {
-      std::vector<std::vector<int>> one_by_one;
-      const Articulation b = estimate_articulation_as(
-          with_slides_only_along(part_samples(track, model_centre, 1, &one_by_one), best_shown), "prismatic");
+    // (A slide is never a swing past a slip: `samples` are the part's own
+    // poses, frame by frame, as they are.)
+    Eigen::Vector3d shown;
+    if (!grip_decides && type == "prismatic" && track.model.has_normals() &&
+        visibility(track.model, "prismatic", a.axis, a.origin) < kSlipVisibility &&
+        best_shown_slide(track.model, &shown)) {
+      const Articulation b =
+          estimate_articulation_as(with_slides_only_along(samples, shown * shown.transpose()), "prismatic");
       if (b.prismatic.valid && visibility(track.model, "prismatic", b.axis, b.origin) >= kSlipVisibility) {
         j.axis = b.axis;
         j.origin = b.origin;
         j.plain_slide = true;
         std::fill(q.begin(), q.end(), kNaN);
-        for (size_t k = 0; k < one_by_one.size() && k < b.q.size(); ++k)
-          for (int f : one_by_one[k]) q[f] = b.q[k];
+        for (size_t k = 0; k < frames.size() && k < b.q.size(); ++k)
+          for (int f : frames[k]) q[f] = b.q[k];
       }
     }
     // The slip rules read the part's own track.
