@@ -170,6 +170,51 @@ TEST(TemplatesFit, AQuickSwitchIsASwitchFrameByFrameAndBinned) {
     }
 }
 
+// A lid driven open by a button (binary), its drive settling within a frame
+// or two: a critically damped response with a time constant of 0.4 frame,
+// simulated finely, to two quick presses whose crossings fall between
+// frames. Stepped once a frame, no lag follows it (a tenth of a frame after
+// a switch it has barely moved, a frame after it is two-thirds there) and
+// a step's second edge wins by moving the release's timing; run within
+// the frames, the lags follow it and binary wins.
+TEST(TemplatesFit, ADriveThatSettlesWithinAFrameIsNoStep) {
+  constexpr int kFine = 64, kFrames = 150;
+  const double dt = 1.0 / 30, tau = 0.4 * dt, threshold = 0.36;
+  auto button = [](double f) {  // frames: two presses, 7-frame strokes, crossings between frames
+    double a = 0;
+    for (double start : {40.3, 95.7}) {
+      const double u = f - start;
+      if (u > 0 && u < 7) a = std::max(a, u / 7);
+      if (u >= 7 && u < 25) a = 1;
+      if (u >= 25 && u < 32) a = std::max(a, 1 - (u - 25) / 7);
+    }
+    return a;
+  };
+  MappingSeries S;
+  S.dt = dt;
+  S.allow_lag = true;
+  S.max_lag_order = 2;
+  S.noise_floor = 0.01 * 1.3;  // as infer_templates floors a driven joint's: 1 % of what it moved
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g(0, 2e-3);
+  double x = 0, y = 0;
+  const double f = 1 - std::exp(-dt / kFine / tau);
+  for (int i = 0; i < kFrames; ++i) {
+    S.s_R.push_back(button(i));
+    S.y.push_back(1.3 * y + g(rng));
+    for (int k = 1; k <= kFine; ++k) {
+      const double target = button(i + double(k) / kFine) >= threshold ? 1.0 : 0.0;
+      x += (target - x) * f;
+      y += (x - y) * f;
+    }
+  }
+  const auto r = fit_mappings(S, efc::pipeline::mapping_prior(false));
+  EXPECT_EQ(fitted_type(r), "binary");
+  ASSERT_GE(r.best_index, 0);
+  EXPECT_NEAR(r.best[r.best_index].threshold, threshold, 0.05);
+  EXPECT_LT(r.best[r.best_index].tau, dt);
+}
+
 // A lid's brightness that follows its own pose (shading) is not light: with
 // the pose's quadratic taken out, nothing is left to follow the receptor;
 // a lamp switched on the moving part still shows its switch.

@@ -28,6 +28,7 @@ struct Prep {
   bool start_anywhere = false;
   std::vector<double> s_fine;  // s linear between frames, kSub samples a frame: [0] = s[0], then (i-1, i]
   bool require_lag = false;
+  bool fine_lag = false;  // lags run kSub steps a frame (fine_lag())
   int bin = 1;  // MappingSeries::bin_frames
   mutable double instant_bic = kInf;  // require_lag: the best model without a lag
 };
@@ -178,6 +179,50 @@ std::vector<double> interval_mean(const std::vector<double>& fine, size_t frames
   return out;
 }
 
+// The target's mean over each fine step (j-1, j] ([0]: u[0]). An on/off
+// target switches inside the step, where s (linear there) crosses the
+// model's level: the threshold, or a step's lower edge when it turns off;
+// a linear map's is its ends' mean. An eighth of a frame is still a third
+// of a fast drive's time constant: a switch placed at the step's end
+// instead of inside it misses by a tenth of the lid's swing.
+std::vector<double> step_means(const MappingModel& m, const std::vector<double>& s, const std::vector<double>& u) {
+  std::vector<double> out(u);
+  for (size_t j = 1; j < u.size(); ++j) {
+    if (u[j] == u[j - 1]) continue;
+    if (m.type == "linear" || s[j] == s[j - 1]) {
+      out[j] = 0.5 * (u[j - 1] + u[j]);
+      continue;
+    }
+    const double level = m.type == "step" && u[j] < u[j - 1] ? m.threshold - m.hysteresis : m.threshold;
+    const double before = std::clamp((level - s[j - 1]) / (s[j] - s[j - 1]), 0.0, 1.0);
+    out[j] = u[j - 1] * before + u[j] * (1 - before);
+  }
+  return out;
+}
+
+// A driven joint settles within a frame or two, faster than a lag stepped
+// once a frame can follow (its response to a switch a third of a frame
+// before a frame is a few per cent, not a third of its first frame's
+// step): the lags run kSub steps a frame on the target's step means
+// (step_means; delayed by `delay` kSub-ths of a frame), each exact for a
+// target held over its step, and the response is read at the frames.
+// tau2 > 0: a second lag in cascade.
+void fine_lag(const std::vector<double>& means, size_t frames, int delay, double tau, double tau2, double dt,
+              double x0, std::vector<double>* out) {
+  out->assign(frames, 0.0);
+  if (!frames || means.empty()) return;
+  const double h = dt / kSub;
+  const double f1 = 1.0 - std::exp(-h / tau), f2 = tau2 > 0 ? 1.0 - std::exp(-h / tau2) : 1.0;
+  double x = std::isfinite(x0) ? x0 : means[0], y = x;
+  (*out)[0] = tau2 > 0 ? y : x;
+  for (size_t j = 1; j < means.size(); ++j) {
+    const double target = means[static_cast<size_t>(std::max(0L, static_cast<long>(j) - delay))];
+    x += (target - x) * f1;
+    y += (x - y) * f2;
+    if (j % kSub == 0 && j / kSub < frames) (*out)[j / kSub] = tau2 > 0 ? y : x;
+  }
+}
+
 // The response as a binned signal sees it (MappingSeries::bin_frames):
 // each observed sample the mean of its bin's frames, so a switch inside a
 // bin gives the fraction of the bin it was on, as the counts do.
@@ -199,12 +244,13 @@ void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto
   std::vector<double> twice, binned;
   const bool lagged = P.taus.size() > 1;
   const std::vector<double> fine = lagged ? model_profile_impl(proto, P.s_fine, P.band) : std::vector<double>();
+  const std::vector<double> fine_means = P.fine_lag ? step_means(proto, P.s_fine, fine) : std::vector<double>();
   // Dead times tried: none, and for a driven joint (second order) up to
   // one and a half frames.
   std::vector<int> delays{0};
   if (lagged && P.max_order > 1) delays = {0, kSub / 2, kSub, 3 * kSub / 2};
   for (int delay : delays) {
-  const std::vector<double> u_mean = lagged ? interval_mean(fine, u_at.size(), delay) : u_at;
+  const std::vector<double> u_mean = lagged && !P.fine_lag ? interval_mean(fine, u_at.size(), delay) : u_at;
   // Where the lag starts: settled at the first target, or (a temperature
   // starts at e_lo whatever its target: runtime) at either end of the
   // profile's levels.
@@ -228,10 +274,14 @@ void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto
     const int n_ratios = order > 1 ? 3 : 1;
     for (int ri = 0; ri < n_ratios; ++ri) {
     const double ratio = ratios[ri];
-    lag(u, tau, P.dt, &scratch, x0);
-    if (order > 1) {
-      lag(scratch, tau * ratio, P.dt, &twice);
-      scratch.swap(twice);
+    if (P.fine_lag && tau > 0) {
+      fine_lag(fine_means, u_at.size(), delay, tau, order > 1 ? tau * ratio : 0, P.dt, x0, &scratch);
+    } else {
+      lag(u, tau, P.dt, &scratch, x0);
+      if (order > 1) {
+        lag(scratch, tau * ratio, P.dt, &twice);
+        scratch.swap(twice);
+      }
     }
     // A binned signal: each sample its bin's mean (MappingSeries::bin_frames).
     const std::vector<double>& v = P.bin > 1 ? binned_response(P, scratch, &binned) : scratch;
@@ -370,8 +420,11 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
   for (size_t i = 1; i < N; ++i)
     for (int k = 1; k <= kSub; ++k) P.s_fine[(i - 1) * kSub + k] = P.s[i - 1] + (P.s[i] - P.s[i - 1]) * k / kSub;
   P.taus = {0};
+  // A driven joint (two lags) may settle within a frame: its lags start at
+  // a quarter of a frame and run kSub steps a frame (fine_lag).
+  P.fine_lag = series.allow_lag && P.max_order > 1;
   if (series.allow_lag)
-    for (double tau = P.dt; tau < 150; tau *= std::sqrt(2.0)) P.taus.push_back(tau);
+    for (double tau = P.fine_lag ? P.dt / 4 : P.dt; tau < 150; tau *= std::sqrt(2.0)) P.taus.push_back(tau);
 
   // The null model: a constant (with the same AR(1) errors as the others).
   {
@@ -468,6 +521,24 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
           consider(P, model_profile(m, P.s, P.band), m, 5, &R.best[3], scratch);
         }
     }
+  }
+  // A drive's time constant, between the grid's (a factor of sqrt 2
+  // apart), matters as much as its switch's timing: each type's best
+  // lagged model tries time constants an eighth of an octave apart, up to
+  // an octave from its own (its second lag's ratio may have stood in for
+  // the first's).
+  if (P.fine_lag) {
+    const std::vector<double> grid = P.taus;
+    for (int idx = 0; idx < 5; ++idx) {
+      const MappingModel base = R.best[idx];
+      if (!base.valid || !(base.tau > 0)) continue;
+      P.taus = {0};
+      for (int e = -8; e <= 8; ++e)
+        if (e != 0) P.taus.push_back(base.tau * std::pow(2.0, e / 8.0));
+      const int k_base = idx == 2 || idx == 3 || (idx == 4 && base.saturate > 0) ? 5 : 4;
+      consider(P, model_profile(base, P.s, P.band), base, k_base, &R.best[idx], scratch);
+    }
+    P.taus = grid;
   }
   // Presses seen by the latching variant (for reports).
   if (R.best[1].valid) {

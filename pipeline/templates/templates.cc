@@ -23,6 +23,13 @@ constexpr int kTypeOf[5] = {0, 0, 1, 2, 3};
 // Evidence (BIC gain over the null) below which a signal is not believed
 // to respond: 10, "very strong" on Kass and Raftery's scale of 2 ln B.
 constexpr double kMinEvidence = 10.0;
+// A driven joint's pose is measured to a fraction of a per cent of its
+// travel, but the lags model its drive only to about one per cent of what
+// it moved (a servo settling within a frame, opening against gravity and
+// closing with it): below that, misfit is not noise, and a model's spare
+// parameter (a step's second edge) would win by bending the switch's
+// timing to it.
+constexpr double kDriveFloor = 0.01;
 
 int part_index(const TemplateInput& in, const std::string& name) {
   for (size_t i = 0; i < in.parts.size(); ++i)
@@ -217,7 +224,8 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
         if (k == 0) {
           S.allow_lag = true;  // a driven joint follows its target
           S.max_lag_order = 2;
-          S.noise_floor = 1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3);
+          S.noise_floor =
+              std::max(1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3), kDriveFloor * spread(signal[0]));
         } else {
           if (k == 3) S.allow_lag = true;  // droplets in flight outlast the flow, and take time to fall into view
           if (k >= 3) S.bin_frames = kBlobBin;  // binned_root()
