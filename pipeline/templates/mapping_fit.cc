@@ -28,7 +28,7 @@ struct Prep {
   bool start_anywhere = false;
   std::vector<double> s_fine;  // s linear between frames, kSub samples a frame: [0] = s[0], then (i-1, i]
   bool require_lag = false;
-  bool fine_lag = false;  // lags run kSub steps a frame (fine_lag())
+  bool fine_lag = false;  // lags shorter than kFineLagFrames run kSub steps a frame (fine_lag())
   int bin = 1;  // MappingSeries::bin_frames
   mutable double instant_bic = kInf;  // require_lag: the best model without a lag
 };
@@ -200,6 +200,10 @@ std::vector<double> step_means(const MappingModel& m, const std::vector<double>&
   return out;
 }
 
+// Slower lags are stepped once a frame: within a frame they barely move,
+// and the fine steps cost eight times as much.
+constexpr double kFineLagFrames = 4;
+
 // A driven joint settles within a frame or two, faster than a lag stepped
 // once a frame can follow (its response to a switch a third of a frame
 // before a frame is a few per cent, not a third of its first frame's
@@ -250,7 +254,7 @@ void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto
   std::vector<int> delays{0};
   if (lagged && P.max_order > 1) delays = {0, kSub / 2, kSub, 3 * kSub / 2};
   for (int delay : delays) {
-  const std::vector<double> u_mean = lagged && !P.fine_lag ? interval_mean(fine, u_at.size(), delay) : u_at;
+  const std::vector<double> u_mean = lagged ? interval_mean(fine, u_at.size(), delay) : u_at;
   // Where the lag starts: settled at the first target, or (a temperature
   // starts at e_lo whatever its target: runtime) at either end of the
   // profile's levels.
@@ -274,7 +278,7 @@ void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto
     const int n_ratios = order > 1 ? 3 : 1;
     for (int ri = 0; ri < n_ratios; ++ri) {
     const double ratio = ratios[ri];
-    if (P.fine_lag && tau > 0) {
+    if (P.fine_lag && tau > 0 && tau < kFineLagFrames * P.dt) {
       fine_lag(fine_means, u_at.size(), delay, tau, order > 1 ? tau * ratio : 0, P.dt, x0, &scratch);
     } else {
       lag(u, tau, P.dt, &scratch, x0);
@@ -421,10 +425,13 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
     for (int k = 1; k <= kSub; ++k) P.s_fine[(i - 1) * kSub + k] = P.s[i - 1] + (P.s[i] - P.s[i - 1]) * k / kSub;
   P.taus = {0};
   // A driven joint (two lags) may settle within a frame: its lags start at
-  // a quarter of a frame and run kSub steps a frame (fine_lag).
+  // half a frame, and the fast ones run kSub steps a frame (fine_lag). A
+  // drive slower than 10 s would not be seen to move in a recording: its
+  // lags stop there (a temperature's go on to minutes).
   P.fine_lag = series.allow_lag && P.max_order > 1;
+  const double longest = P.fine_lag ? 10 : 150;
   if (series.allow_lag)
-    for (double tau = P.fine_lag ? P.dt / 4 : P.dt; tau < 150; tau *= std::sqrt(2.0)) P.taus.push_back(tau);
+    for (double tau = P.fine_lag ? P.dt / 2 : P.dt; tau < longest; tau *= std::sqrt(2.0)) P.taus.push_back(tau);
 
   // The null model: a constant (with the same AR(1) errors as the others).
   {

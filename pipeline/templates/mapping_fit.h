@@ -13,8 +13,8 @@
 // y = a + b * lag(u) + e, a and b by least squares (the signal's units are
 // unknown), lag: none, first order (a temperature, droplets) or two in
 // cascade with a dead time (a driven joint), integrating u's mean over each
-// frame's interval (sub-frame switch times; a driven joint's lags run 8
-// steps a frame, as it may settle within one). The errors e are AR(1): one
+// frame's interval (sub-frame switch times; a driven joint's fast lags run
+// 8 steps a frame, as it may settle within one). The errors e are AR(1): one
 // Cochrane-Orcutt step, BIC = m log(RSS_w / m) + k log m over the m
 // innovations, with a noise floor (a camera that moves slowly makes
 // neighbouring frames' errors alike; whitened, they no longer pass for a
