@@ -248,7 +248,11 @@ void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto
   std::vector<double> twice, binned;
   const bool lagged = P.taus.size() > 1;
   const std::vector<double> fine = lagged ? model_profile_impl(proto, P.s_fine, P.band) : std::vector<double>();
-  const std::vector<double> fine_means = P.fine_lag ? step_means(proto, P.s_fine, fine) : std::vector<double>();
+  // Only a lag under kFineLagFrames runs on the fine steps' means.
+  const bool any_fine = P.fine_lag && std::any_of(P.taus.begin(), P.taus.end(), [&](double tau) {
+                          return tau > 0 && tau < kFineLagFrames * P.dt;
+                        });
+  const std::vector<double> fine_means = any_fine ? step_means(proto, P.s_fine, fine) : std::vector<double>();
   // Dead times tried: none, and for a driven joint (second order) up to
   // one and a half frames.
   std::vector<int> delays{0};
@@ -539,7 +543,8 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
     for (int idx = 0; idx < 5; ++idx) {
       const MappingModel base = R.best[idx];
       if (!base.valid || !(base.tau > 0)) continue;
-      P.taus = {0};
+      // (No instant model: the grid tried it with these parameters.)
+      P.taus.clear();
       for (int e = -8; e <= 8; ++e)
         if (e != 0) P.taus.push_back(base.tau * std::pow(2.0, e / 8.0));
       const int k_base = idx == 2 || idx == 3 || (idx == 4 && base.saturate > 0) ? 5 : 4;
