@@ -301,8 +301,6 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     worker();
     for (std::thread& t : pool) t.join();
   }
-  stages.push_back(stage("reconstruction", since(t0)));
-  if (progress) progress("infer: parts reconstructed");
 
   // The parts that made it: a mesh is needed for the spec.
   int root = recon[body].ok ? body : -1;
@@ -315,6 +313,10 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     diags.error("E1057", sequence.dir(), 0, 0, "", "no static part could be reconstructed: there is no body to build on");
     return 1;
   }
+  // The body stands on its foot (a static part: its points need no track).
+  recon[root].stood = stand_on_its_foot(obs, root, to_object, &recon[root]);
+  stages.push_back(stage("reconstruction", since(t0)));
+  if (progress) progress("infer: parts reconstructed");
   std::vector<AssembledPart> assembled;
   std::vector<int> part_of_assembled;
   for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
@@ -417,6 +419,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
                   {"vertices", recon[p].mesh.vertices.size()},
                   {"volume_m3", recon[p].volume},
                   {"frames_fused", recon[p].frames_fused}};
+    if (recon[p].stood) jp["mesh"]["stood_on_foot"] = true;
     jparts.push_back(jp);
   }
   ojson jfun = ojson::array();

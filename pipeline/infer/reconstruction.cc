@@ -1,5 +1,6 @@
 #include "pipeline/infer/reconstruction.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "pipeline/cloud/fusion.h"
@@ -40,6 +41,52 @@ PartReconstruction reconstruct_part(const Observations& obs, int part, const std
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+bool stand_on_its_foot(const Observations& obs, int part, const std::vector<Eigen::Isometry3d>& to_object,
+                       PartReconstruction* recon) {
+  if (recon->mesh.vertices.size() < 4) return false;
+  const auto start = std::chrono::steady_clock::now();
+  // How low the body goes: a coarse fusion's lowest points but a few (a
+  // half percent: a stray below the floor would otherwise sink it).
+  FusionOptions fo;
+  fo.voxel = kStandingVoxel;
+  fo.min_observations = 2;
+  PartFusion fusion(fo);
+  const int n = static_cast<int>(obs.times.size());
+  for (int f = 0; f < n; ++f) {
+    Cloud c = part_cloud_in_object(obs, part, f, to_object);
+    if (c.size() > 0) fusion.add_frame(c);
+  }
+  std::vector<double> z;
+  for (const Eigen::Vector3d& p : fusion.fused().points)
+    if (p.allFinite()) z.push_back(p.z());
+  for (const Eigen::Vector3d& v : recon->mesh.vertices) z.push_back(v.z());
+  const size_t k = z.size() / 200;
+  std::nth_element(z.begin(), z.begin() + static_cast<long>(k), z.end());
+  const double foot = z[k];
+  // The fine hull's corners as they are, and the body's top, where it faces
+  // up, on columns down to the foot. Only what faces up stands on a column:
+  // a mask that spills past the body's outline takes in the wall behind it
+  // (its face towards the camera) or the floor around it (at the foot
+  // already), and a column under the wall would fill the gap between them.
+  // (The coarse points themselves stay out: they keep more of such a spill
+  // than the fine fusion's outlier test does.)
+  std::vector<Eigen::Vector3d> standing(recon->mesh.vertices.begin(), recon->mesh.vertices.end());
+  if (recon->fused.has_normals())
+    for (size_t i = 0; i < recon->fused.size(); ++i) {
+      const Eigen::Vector3d& p = recon->fused.points[i];
+      if (!p.allFinite() || recon->fused.normals[i].z() < kFacingUp || p.z() <= foot) continue;
+      standing.push_back(p);
+      standing.emplace_back(p.x(), p.y(), foot);
+    }
+  TriMesh mesh;
+  std::string error;
+  if (!convex_hull(standing, &mesh, &error)) return false;
+  recon->mesh = std::move(mesh);
+  recon->volume = mesh_volume(recon->mesh);
+  recon->seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
 }
 
 }  // namespace efc::pipeline

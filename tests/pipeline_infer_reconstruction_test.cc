@@ -1,0 +1,108 @@
+// The reconstruction stage (pipeline/infer/reconstruction.h) on made-up
+// clouds: a cabinet on the floor, seen as a recording sees it. The far frames
+// of the approach see all of its front, sparsely and each a little
+// differently; the near frames see its top and the front's upper half
+// densely. Its hull alone is a wedge missing the back and the foot; stood on
+// its foot, it is the cabinet.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "pipeline/cloud/mesh.h"
+#include "pipeline/infer/reconstruction.h"
+
+namespace {
+
+using namespace efc::pipeline;
+using Eigen::Vector3d;
+
+// The cabinet: x in [-0.4, 0.4], y in [-0.25, 0.25] (its front at -0.25),
+// z in [0, 0.7].
+constexpr double kW = 0.8, kD = 0.5, kH = 0.7;
+
+// Its front (y = -0.25) from z_lo up, and its top, on a grid of `step`
+// metres; `noise` (m): each point off the surface by up to that much, as a
+// depth camera's far readings are (frame `frame`'s own draw).
+Cloud seen(double step, double z_lo, double noise, int frame) {
+  Cloud c;
+  unsigned state = 2654435761u * static_cast<unsigned>(frame + 1);
+  auto jitter = [&]() {
+    state = state * 1664525u + 1013904223u;
+    return noise * (2.0 * (state >> 8) / double(1u << 24) - 1.0);
+  };
+  for (double x = -kW / 2; x <= kW / 2; x += step) {
+    for (double z = z_lo; z <= kH; z += step) {
+      c.points.emplace_back(x + jitter(), -kD / 2 + jitter(), z + jitter());
+      c.normals.emplace_back(0, -1, 0);
+    }
+    for (double y = -kD / 2; y <= kD / 2; y += step) {
+      c.points.emplace_back(x + jitter(), y + jitter(), kH + jitter());
+      c.normals.emplace_back(0, 0, 1);
+    }
+  }
+  return c;
+}
+
+Observations recording() {
+  Observations obs;
+  PartFrames body;
+  body.name = "body";
+  body.role = "object";
+  // 10 far frames (points 1 cm apart, up to 5 mm off), then 30 near ones
+  // (4 mm apart, exact) of the top and the front's upper half.
+  for (int f = 0; f < 10; ++f) body.clouds.push_back(seen(0.01, 0.0, 0.005, f));
+  for (int f = 0; f < 30; ++f) body.clouds.push_back(seen(0.004, 0.4, 0.0, f));
+  body.pixels.assign(body.clouds.size(), 1000);
+  obs.parts.push_back(body);
+  for (size_t f = 0; f < obs.parts[0].clouds.size(); ++f) {
+    obs.times.push_back(f / 30.0);
+    obs.camera_to_world.push_back(Eigen::Isometry3d::Identity());
+  }
+  return obs;
+}
+
+TEST(PipelineInferReconstruction, ABodyStandsOnItsFoot) {
+  const Observations obs = recording();
+  const std::vector<Eigen::Isometry3d> to_object(obs.times.size(), Eigen::Isometry3d::Identity());
+  PartReconstruction r = reconstruct_part(obs, 0, to_object, nullptr, nullptr);
+  ASSERT_TRUE(r.ok) << r.error;
+  const double box = kW * kD * kH;
+  // The hull of what several frames agree on at 3 mm: the top and the
+  // front down to where the far frames' points rarely share a voxel, a
+  // wedge without the back or the foot.
+  EXPECT_GT(r.bounds.min().z(), 0.1);
+  EXPECT_LT(r.volume, 0.75 * box);
+  const Eigen::AlignedBox3d fine_bounds = r.bounds;
+  const size_t fine_points = r.fused.size();
+
+  ASSERT_TRUE(stand_on_its_foot(obs, 0, to_object, &r));
+  EXPECT_NEAR(r.volume, box, 0.05 * box);
+  Eigen::AlignedBox3d stood;
+  for (const Vector3d& v : r.mesh.vertices) stood.extend(v);
+  EXPECT_NEAR(stood.min().z(), 0.0, 0.015);  // a coarse voxel's centroid
+  EXPECT_NEAR(stood.max().z(), kH, 0.01);
+  EXPECT_NEAR(stood.min().y(), -kD / 2, 0.01);
+  EXPECT_NEAR(stood.max().y(), kD / 2, 0.01);
+  // What the template stage reads stays as it was.
+  EXPECT_EQ(r.fused.size(), fine_points);
+  EXPECT_TRUE(r.bounds.isApprox(fine_bounds));
+}
+
+TEST(PipelineInferReconstruction, APartNeverSeenDoesNotStand) {
+  Observations obs;
+  PartFrames empty;
+  empty.name = "bulb";
+  empty.role = "object";
+  empty.clouds.assign(5, Cloud{});
+  empty.pixels.assign(5, 0);
+  obs.parts.push_back(empty);
+  obs.times = {0, 1, 2, 3, 4};
+  obs.camera_to_world.assign(5, Eigen::Isometry3d::Identity());
+  const std::vector<Eigen::Isometry3d> to_object(5, Eigen::Isometry3d::Identity());
+  PartReconstruction r;
+  EXPECT_FALSE(stand_on_its_foot(obs, 0, to_object, &r));
+  EXPECT_TRUE(r.mesh.vertices.empty());
+}
+
+}  // namespace
