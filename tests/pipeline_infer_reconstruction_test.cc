@@ -68,9 +68,9 @@ TEST(PipelineInferReconstruction, ABodyStandsOnItsFoot) {
   PartReconstruction r = reconstruct_part(obs, 0, to_object, nullptr, nullptr);
   ASSERT_TRUE(r.ok) << r.error;
   const double box = kW * kD * kH;
-  // The hull of what several frames agree on at 3 mm: the top and the
-  // front down to where the far frames' points rarely share a voxel, a
-  // wedge without the back or the foot.
+  // The hull of the fine fusion: the top and the front down to where the
+  // far frames' sparse, noisy points stop surviving it, a wedge without the
+  // back or the foot.
   EXPECT_GT(r.bounds.min().z(), 0.1);
   EXPECT_LT(r.volume, 0.75 * box);
   const Eigen::AlignedBox3d fine_bounds = r.bounds;

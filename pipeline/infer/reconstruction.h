@@ -42,13 +42,14 @@ PartReconstruction reconstruct_part(const Observations& obs, int part, const std
 // surface faces up (normal z >= kFacingUp), it stands on a column down to
 // the body's foot, and the mesh is the hull of the fine hull's corners, those
 // points and their feet. The foot is the lowest point but a half percent of
-// a fusion at kStandingVoxel, coarse enough that the far frames of the
-// approach, the only ones that see the body's foot, agree on it (at 3 mm
-// their points, a centimetre apart from 2.7 m away, rarely share a voxel
-// twice, and the outlier test drops them as sparse). Only what faces up
-// stands: a mask that spills past the body's outline takes in the wall
-// behind it (facing the camera), whose columns would fill the gap between
-// the two. `recon`'s mesh and volume are replaced; its fused points and
+// a fusion at kStandingVoxel, where the far frames of the approach, the only
+// ones that see the body's foot, are as dense as the near ones (their
+// points, a centimetre apart from 2.7 m away, are sparse beside the near
+// frames' at 3 mm, and the fine fusion's outlier test drops them: s0000's
+// hull's lowest point is 0.16 m up with the test, at the foot without it).
+// Only what faces up stands: a mask that spills past the body's outline
+// takes in the wall behind it (facing the camera), whose columns would fill
+// the gap between the two. `recon`'s mesh and volume are replaced; its fused points and
 // bounds, which the template stage reads, are kept. False (recon unchanged)
 // without a hull to start from or when the new one cannot be built.
 constexpr double kStandingVoxel = 0.01;
