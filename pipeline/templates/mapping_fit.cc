@@ -203,6 +203,7 @@ std::vector<double> step_means(const MappingModel& m, const std::vector<double>&
 // Slower lags are stepped once a frame: within a frame they barely move,
 // and the fine steps cost eight times as much.
 constexpr double kFineLagFrames = 4;
+bool runs_fine(const Prep& P, double tau) { return P.fine_lag && tau > 0 && tau < kFineLagFrames * P.dt; }
 
 // A driven joint settles within a frame or two, faster than a lag stepped
 // once a frame can follow (its response to a switch a third of a frame
@@ -243,15 +244,20 @@ const std::vector<double>& binned_response(const Prep& P, const std::vector<doub
   return *out;
 }
 
+// A model's own parameters before any lag's (a, b, and its switch: the
+// threshold; a step's hysteresis, a linear map's second end and a
+// saturating counter's limit one more).
+int base_parameters(int idx, const MappingModel& m) {
+  return idx == 2 || idx == 3 || (idx == 4 && m.saturate > 0) ? 5 : 4;
+}
+
 void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto, int k_base,
               MappingModel* best, std::vector<double>& scratch) {
   std::vector<double> twice, binned;
   const bool lagged = P.taus.size() > 1;
   const std::vector<double> fine = lagged ? model_profile_impl(proto, P.s_fine, P.band) : std::vector<double>();
   // Only a lag under kFineLagFrames runs on the fine steps' means.
-  const bool any_fine = P.fine_lag && std::any_of(P.taus.begin(), P.taus.end(), [&](double tau) {
-                          return tau > 0 && tau < kFineLagFrames * P.dt;
-                        });
+  const bool any_fine = std::any_of(P.taus.begin(), P.taus.end(), [&](double tau) { return runs_fine(P, tau); });
   const std::vector<double> fine_means = any_fine ? step_means(proto, P.s_fine, fine) : std::vector<double>();
   // Dead times tried: none, and for a driven joint (second order) up to
   // one and a half frames.
@@ -282,7 +288,7 @@ void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto
     const int n_ratios = order > 1 ? 3 : 1;
     for (int ri = 0; ri < n_ratios; ++ri) {
     const double ratio = ratios[ri];
-    if (P.fine_lag && tau > 0 && tau < kFineLagFrames * P.dt) {
+    if (runs_fine(P, tau)) {
       fine_lag(fine_means, u_at.size(), delay, tau, order > 1 ? tau * ratio : 0, P.dt, x0, &scratch);
     } else {
       lag(u, tau, P.dt, &scratch, x0);
@@ -507,7 +513,7 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
       for (int j = -kFine; j <= kFine; ++j) {
         MappingModel m = base;
         m.threshold = base.threshold + dT * j / kFine;
-        consider(P, model_profile(m, P.s, P.band), m, idx == 4 && base.saturate > 0 ? 5 : 4, &R.best[idx], scratch);
+        consider(P, model_profile(m, P.s, P.band), m, base_parameters(idx, base), &R.best[idx], scratch);
       }
     }
     if (R.best[2].valid) {
@@ -547,8 +553,7 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
       P.taus.clear();
       for (int e = -8; e <= 8; ++e)
         if (e != 0) P.taus.push_back(base.tau * std::pow(2.0, e / 8.0));
-      const int k_base = idx == 2 || idx == 3 || (idx == 4 && base.saturate > 0) ? 5 : 4;
-      consider(P, model_profile(base, P.s, P.band), base, k_base, &R.best[idx], scratch);
+      consider(P, model_profile(base, P.s, P.band), base, base_parameters(idx, base), &R.best[idx], scratch);
     }
     P.taus = grid;
   }
