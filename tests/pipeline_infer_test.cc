@@ -166,7 +166,10 @@ TEST(PipelineInfer, AButtonsRegistrationThatSlipsRoundItsAxisStillShowsThePress)
   const double shows = visibility(model, "revolute", normal, Vector3d::Zero());
   ASSERT_GT(shows, kMinVisibility);
   ASSERT_LT(shows, kSlipVisibility);
-  const JointEstimate pressed = estimate_joint(button(true, 31), no_hand(frames));
+  // Pressed by a function (no hand operates it): the hinge's own slide
+  // shows the press. (A receptor's press shows past its slip first:
+  // AReceptorsPressShowsPastItsSlip.)
+  const JointEstimate pressed = estimate_joint(button(true, 31), no_hand(frames), false);
   EXPECT_EQ(pressed.type, "prismatic");
   EXPECT_TRUE(pressed.slide_over_turn);
   EXPECT_LT(std::acos(std::min(1.0, std::abs(pressed.axis.dot(normal)))), 0.1);
@@ -175,6 +178,10 @@ TEST(PipelineInfer, AButtonsRegistrationThatSlipsRoundItsAxisStillShowsThePress)
   const JointEstimate turned = estimate_joint(button(false, 32), no_hand(frames));
   EXPECT_EQ(turned.type, "revolute");
   EXPECT_FALSE(turned.slide_over_turn);
+  EXPECT_FALSE(turned.press_past_slip);
+  const JointEstimate operated = estimate_joint(button(true, 31), no_hand(frames));
+  EXPECT_EQ(operated.type, "prismatic");
+  EXPECT_TRUE(operated.press_past_slip);
 }
 
 TEST(PipelineInfer, AnEffectorsRegistrationThatSlipsRoundItselfLeavesItFixed) {
@@ -207,6 +214,59 @@ TEST(PipelineInfer, AnEffectorsRegistrationThatSlipsRoundItselfLeavesItFixed) {
   const JointEstimate driven = estimate_joint(door, no_hand(frames), false);
   EXPECT_EQ(driven.type, "revolute");
   EXPECT_FALSE(driven.turn_taken_for_slip);
+}
+
+TEST(PipelineInfer, AReceptorsPressShowsPastItsSlip) {
+  // A round button the hand operates: its registration spins it about its
+  // axis by whole radians from frame to frame and wanders 2 mm across the
+  // axis, and it is pressed 6 mm in twice. A hinge through it explains such
+  // poses better than a slide does; its centre along its symmetry axis,
+  // held one way for a run of frames, shows the press. A knob's slipping
+  // registration that jumps both ways along the axis, a frame at a time,
+  // is no press.
+  const int frames = 150;
+  const Vector3d normal = Vector3d::UnitZ();
+  auto round_part = [&](bool pressed, bool jumps, unsigned seed) {
+    PartTrack t = turning(ridged_button(), normal, Vector3d::Zero(), 0.0, frames, 0.0, seed);
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> g(0, 1);
+    double slip = 0;
+    for (int f = 0; f < frames; ++f) {
+      slip += 0.6 * g(rng);
+      const bool in = pressed && ((f >= 40 && f < 60) || (f >= 95 && f < 115));
+      const double jump = jumps && f % 23 == 11 ? (f % 2 ? 0.006 : -0.006) : 0.0;
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.linear() = Eigen::AngleAxisd(slip, normal).toRotationMatrix();
+      T.translation() = Vector3d(0.002 * g(rng), 0.002 * g(rng), 0.0005 * g(rng)) + (jump - (in ? 0.006 : 0.0)) * normal;
+      t.motion[f] = T;
+    }
+    with_information(&t);
+    return t;
+  };
+  const JointEstimate button = estimate_joint(round_part(true, false, 71), no_hand(frames), true);
+  EXPECT_TRUE(button.press_past_slip);
+  EXPECT_EQ(button.type, "prismatic");
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(button.axis.dot(normal)))), 0.1);
+  EXPECT_NEAR(button.range_hi - button.range_lo, 0.006, 0.002);
+  ASSERT_EQ(static_cast<int>(button.q.size()), frames);
+  EXPECT_GT(button.q[50] - button.q[20], 0.004);  // in at the press, out before
+  for (const bool jumps : {false, true}) {
+    const JointEstimate knob = estimate_joint(round_part(false, jumps, 72), no_hand(frames), true);
+    EXPECT_FALSE(knob.press_past_slip) << jumps;
+    EXPECT_NE(knob.type, "prismatic") << jumps;
+  }
+  // Nobody operates an effector: its slip is no press either.
+  EXPECT_FALSE(estimate_joint(round_part(true, false, 71), no_hand(frames), false).press_past_slip);
+  // Where the hand's contacts trace a turn about the part (5 cm out, 1.5
+  // rad and back), the hand turned it: whatever its centre did, no press.
+  std::vector<Vector3d> turning_hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) {
+    const double a = 1.5 * std::sin(kPi * (f - 20) / 110.0);
+    turning_hand[f] = Vector3d(0.05 * std::cos(a), 0.05 * std::sin(a), 0.012);
+  }
+  const JointEstimate turned = estimate_joint(round_part(true, false, 71), turning_hand, true);
+  EXPECT_EQ(turned.from_hand.type, "revolute");
+  EXPECT_FALSE(turned.press_past_slip);
 }
 
 // A round shade (a ring 10 cm across, 8 cm tall, axis z) whose registration

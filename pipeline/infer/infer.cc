@@ -68,6 +68,7 @@ ojson joint_report(const JointEstimate& j) {
   if (j.slide_over_turn) r["slide_over_turn"] = true;
   if (j.turn_taken_for_slip) r["turn_taken_for_slip"] = true;
   if (j.swing_past_slip) r["swing_past_slip"] = true;
+  if (j.press_past_slip) r["press_past_slip"] = true;
   if (j.grip_with_hand) r["grip_with_hand"] = true;
   if (j.plain_slide) r["plain_slide"] = true;
   if (j.type != "fixed") {

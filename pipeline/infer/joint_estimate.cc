@@ -487,6 +487,39 @@ Track with_slides_only_along(Track t, const Eigen::Matrix3d& P) {
   return t;
 }
 
+// Whether a part's positions along an axis, one per run of frames (m),
+// show a press: the part rests at their median, and a press holds it one
+// way along the axis, beyond the noise (kPressNoises robust deviations, and
+// kMinPress), for at least kPressRuns runs in a row, no deeper than a
+// button goes (kMaxPress), while the other way it stays within the noise
+// and within kPressBack of the press's depth. A knob's slipping
+// registration wanders both ways, a frame or two at a time.
+constexpr double kPressNoises = 3;
+constexpr double kMinPress = 0.0015;  // m
+constexpr double kMaxPress = 0.02;    // m
+constexpr double kPressBack = 0.35;
+constexpr int kPressRuns = 2;
+bool held_press(const std::vector<double>& along) {
+  if (static_cast<int>(along.size()) < kMinSamples) return false;
+  const double rest = median_of(along);
+  std::vector<double> spread;
+  for (double a : along) spread.push_back(std::abs(a - rest));
+  const double beyond = std::max(kPressNoises * 1.4826 * median_of(spread), kMinPress);
+  for (const double side : {1.0, -1.0}) {
+    int held = 0, longest = 0;
+    double deepest = 0, back = 0;
+    for (double a : along) {
+      const double d = side * (a - rest);
+      held = d > beyond ? held + 1 : 0;
+      longest = std::max(longest, held);
+      deepest = std::max(deepest, d);
+      back = std::max(back, -d);
+    }
+    if (longest >= kPressRuns && deepest <= kMaxPress && back <= beyond && back <= kPressBack * deepest) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
@@ -614,23 +647,53 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.swing_past_slip = swing.type == "revolute" && !turns_about_itself(track.model, swing.axis, swing.origin) &&
                         visibility(track.model, "revolute", swing.axis, swing.origin) >= kSlipVisibility;
   }
-  bool part_decides = j.swing_past_slip || part_shows_motion;
+  // A receptor's slip likewise hides its press: a round button's
+  // registration spins it by whole radians about its own axis, which a
+  // hinge through it fits better than the few millimetres of its press fit
+  // a slide. Its centre's position along its symmetry axis (its poses less
+  // their twist about that axis, on the typing's runs of frames) shows the
+  // press alone: held_press() decides. A round knob's centre stays put
+  // along its axis as it turns, give or take the slip's noise both ways;
+  // and where the grip plainly turns, or the hand's contacts trace a turn,
+  // the hand twisted the part (s0049's lever under degraded masks: its
+  // centre swung 5 mm one way along its axis as it turned). The
+  // press's axis is the spin's, from the part's poses frame by frame (the
+  // slide_over_turn rule's hinge): the symmetry axis of a shape seen from
+  // one side shows a press well enough, but is tens of degrees off.
+  const bool hand_turns = (j.has_grip_track && j.from_grip.type == "revolute" && j.grip_visibility >= kSlipVisibility) ||
+                          (j.has_hand_track && j.from_hand.type == "revolute");
+  Eigen::Vector3d spin_axis = Eigen::Vector3d::Zero();
+  if (operated && part_shows_a_slip && !hand_turns && near_symmetry_axis(track.model, &symmetry)) {
+    std::vector<std::vector<int>> press_frames;
+    const Track untwisted = part_samples(track, model_centre, kPartBin, &press_frames, true, &symmetry);
+    std::vector<double> along;
+    for (const Eigen::Vector3d& p : untwisted.positions) along.push_back(p.dot(symmetry));
+    if (held_press(along)) {
+      std::vector<std::vector<int>> frames_one_by_one;
+      spin_axis = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), "revolute")
+                      .axis.normalized();
+      j.press_past_slip = spin_axis.allFinite();
+    }
+  }
+  bool part_decides = j.swing_past_slip || j.press_past_slip || part_shows_motion;
   // The grip speaks where the part's own track cannot show the motion, or
   // shows only a turn its registration can slip into, and its own motion
   // shows on the hand's shape.
-  const bool part_may_slip = !j.swing_past_slip && part_shows_a_slip;
-  const bool grip_decides = !j.swing_past_slip && j.has_grip_track && j.from_grip.type != "fixed" &&
+  const bool part_may_slip = !j.swing_past_slip && !j.press_past_slip && part_shows_a_slip;
+  const bool grip_decides = !j.swing_past_slip && !j.press_past_slip && j.has_grip_track && j.from_grip.type != "fixed" &&
                             j.grip_visibility >= kMinVisibility && (!part_decides || part_may_slip);
   if (grip_decides) part_decides = false;
   const bool hand_decides = !part_decides && !grip_decides && j.has_hand_track && j.from_hand.type != "fixed";
   std::string type = "fixed";
   const Articulation* decider = nullptr;
   if (j.swing_past_slip) type = "revolute", decider = &swing;
+  else if (j.press_past_slip) type = "prismatic";
   else if (part_decides) type = j.from_part.type, decider = &j.from_part;
   else if (grip_decides) type = j.from_grip.type, decider = &j.from_grip;
   else if (hand_decides) type = j.from_hand.type, decider = &j.from_hand;
   else if (j.has_part_track) decider = &j.from_part;
   else if (j.has_hand_track) decider = &j.from_hand;
+  if (j.press_past_slip) j.confidence = 0.5;  // by the rule, not by the likelihoods (which favour the turn)
   if (decider) {
     j.confidence = type == "revolute" ? decider->p_revolute : type == "prismatic" ? decider->p_prismatic : decider->p_fixed;
     if (type == "fixed" && j.has_part_track && !part_visible) j.confidence = 1.0;  // nothing shows a motion
@@ -718,9 +781,13 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     // fan head's hinge came out 80 degrees off; without, 34).
     const PartTrack& decided = grip_decides ? *grip : track;
     std::vector<std::vector<int>> frames;
-    const Track samples = part_samples(decided, grip_decides ? grip_centre : model_centre, 1, &frames,
-                                       j.swing_past_slip, j.swing_past_slip ? &symmetry : nullptr);
-    const Articulation a = estimate_articulation_as(samples, type);
+    const Track samples =
+        part_samples(decided, grip_decides ? grip_centre : model_centre, 1, &frames,
+                     j.swing_past_slip || j.press_past_slip,
+                     j.swing_past_slip ? &symmetry : j.press_past_slip ? &spin_axis : nullptr);
+    // A press past a slip: along the spin's axis alone, as it was typed.
+    const Articulation a = estimate_articulation_as(
+        j.press_past_slip ? with_slides_only_along(samples, spin_axis * spin_axis.transpose()) : samples, type);
     j.source = grip_decides ? "grip" : "part";
     j.type = type;
     j.axis = a.axis;

@@ -65,6 +65,12 @@ struct JointEstimate {
   // swing decides (a door's plate slipping round its normal, a round
   // shade's spin), whatever the slip made of the whole track.
   bool swing_past_slip = false;
+  // A receptor whose track turns about an axis through itself that its
+  // shape barely shows, and whose centre, its poses less their twist about
+  // its symmetry axis, is held one way along that axis for a while and
+  // never as far the other way: the press (a round button's) decides,
+  // along the turn's axis, the turn taken for the registration's slip.
+  bool press_past_slip = false;
   // A slide the part's track found along a direction its shape barely
   // shows, taken for a slip and replaced by the slide along the direction
   // its shape shows best (a button's press under its face's in-plane
