@@ -156,6 +156,36 @@ TEST(PipelineInferEgo, TheRoomIsWhatNoMaskClaims) {
   }
   EXPECT_GT(frames_with_room, static_cast<int>(obs.times.size()) / 2);
 
+  // Each part's outline: points just outside its mask (within
+  // kOutlinePixels of it, never in it), the pixels a mask drawn a little too
+  // wide would have taken in.
+  int outline_points = 0;
+  for (const PartFrames& pf : obs.parts) {
+    ASSERT_EQ(pf.outlines.size(), obs.times.size());
+    for (size_t f = 0; f < pf.outlines.size(); ++f) {
+      if (pf.outlines[f].points.empty()) continue;
+      efc::seq::Image8 mask;
+      ASSERT_TRUE(sequence.read_mask(pf.mask, static_cast<int>(f), diags, &mask));
+      const Eigen::Isometry3d world_to_camera = obs.camera_to_world[f].inverse();
+      for (const Vector3d& p : pf.outlines[f].points) {
+        double u = 0, v = 0;
+        ASSERT_TRUE(project(meta.intrinsics, world_to_camera * p, &u, &v));
+        const int x = static_cast<int>(std::lround(u)), y = static_cast<int>(std::lround(v));
+        ASSERT_EQ(mask.pixels[static_cast<size_t>(y) * mask.width + x], 0) << pf.name << " frame " << f;
+        bool near = false;
+        for (int dy = -kOutlinePixels; dy <= kOutlinePixels && !near; ++dy)
+          for (int dx = -kOutlinePixels; dx <= kOutlinePixels && !near; ++dx) {
+            const int xx = x + dx, yy = y + dy;
+            near = xx >= 0 && yy >= 0 && xx < mask.width && yy < mask.height &&
+                   mask.pixels[static_cast<size_t>(yy) * mask.width + xx] != 0;
+          }
+        ASSERT_TRUE(near) << pf.name << " frame " << f << " pixel " << x << "," << y;
+        ++outline_points;
+      }
+    }
+  }
+  EXPECT_GT(outline_points, 1000);
+
   // Off, there is none.
   options.background = false;
   ASSERT_TRUE(observe(sequence, options, diags, nullptr, &obs));

@@ -21,8 +21,9 @@ void PartFusion::add_frame(const Cloud& cloud) {
   for (size_t i = 0; i < cloud.size(); ++i) {
     const Eigen::Vector3d& p = cloud.points[i];
     if (!p.allFinite()) continue;
-    auto [it, fresh] = index_.emplace(detail::voxel_of(p, options_.voxel), voxels_.size());
-    if (fresh) voxels_.emplace_back();
+    const detail::VoxelKey key = detail::voxel_of(p, options_.voxel);
+    auto [it, fresh] = index_.emplace(key, voxels_.size());
+    if (fresh) voxels_.emplace_back().key = key;
     Voxel& v = voxels_[it->second];
     v.sum += p;
     if (normals && cloud.normals[i].allFinite()) {
@@ -39,16 +40,36 @@ void PartFusion::add_frame(const Cloud& cloud) {
 
 int PartFusion::frames() const { return frames_; }
 
+int PartFusion::observations_at(const Eigen::Vector3d& p) const {
+  return p.allFinite() ? observations_of(detail::voxel_of(p, options_.voxel)) : 0;
+}
+
+int PartFusion::observations_of(const detail::VoxelKey& key) const {
+  const auto it = index_.find(key);
+  return it == index_.end() ? 0 : voxels_[it->second].observations;
+}
+
 int PartFusion::required_observations() const {
   return std::clamp(options_.min_observations, 1, std::max(1, frames_));
 }
 
-Cloud PartFusion::fused() const {
+Cloud PartFusion::fused() const { return fused(nullptr, nullptr); }
+
+Cloud PartFusion::fused(const PartFusion* outside, int* dropped) const {
   Cloud out;
   const int need = required_observations();
   const bool normals = normals_ && !voxels_.empty();
+  if (dropped) *dropped = 0;
+  const bool same_grid = outside && outside->options_.voxel == options_.voxel;
   for (const Voxel& v : voxels_) {
     if (v.observations < need) continue;
+    // By the voxel's key where the grids agree, not its centroid: the mean
+    // of points on a voxel's face may round across it.
+    if (outside && (same_grid ? outside->observations_of(v.key) : outside->observations_at(v.sum / static_cast<double>(v.count))) >
+                       v.observations) {
+      if (dropped) ++*dropped;
+      continue;
+    }
     out.points.push_back(v.sum / static_cast<double>(v.count));
     if (normals) {
       // Opposite normals (both faces of a thin part in one voxel) can cancel.

@@ -40,14 +40,23 @@ class PartFusion {
   // The surviving voxel centroids (with normals when every non-empty frame
   // had them), in the order the voxels were first seen.
   Cloud fused() const;
+  // The same, after the masks' vote: `outside` fused the points just
+  // outside the part's mask in the same frames, the same way (the
+  // observations' outlines); a voxel more frames put there than in this
+  // part is what a mask drawn too wide took in, and goes before the
+  // outlier test. *dropped (may be null): how many went.
+  Cloud fused(const PartFusion* outside, int* dropped) const;
 
   // Additions: voxels occupied so far (before any thresholding), and the
   // observation count fused() requires now.
   size_t voxels() const { return voxels_.size(); }
+  // The frames that put a point in the voxel holding p (0 for none).
+  int observations_at(const Eigen::Vector3d& p) const;
   int required_observations() const;
 
  private:
   struct Voxel {
+    detail::VoxelKey key;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
     Eigen::Vector3d first_normal = Eigen::Vector3d::UnitZ();
@@ -55,6 +64,7 @@ class PartFusion {
     int observations = 0;   // frames that put a point here
     int last_frame = -1;    // so a frame counts once
   };
+  int observations_of(const detail::VoxelKey& key) const;
   FusionOptions options_;
   int frames_ = 0;
   bool normals_ = true;  // every non-empty frame so far had normals

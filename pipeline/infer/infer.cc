@@ -419,7 +419,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     jp["mesh"] = {{"points", recon[p].fused.size()},
                   {"vertices", recon[p].mesh.vertices.size()},
                   {"volume_m3", recon[p].volume},
-                  {"frames_fused", recon[p].frames_fused}};
+                  {"frames_fused", recon[p].frames_fused},
+                  {"outline_voxels_dropped", recon[p].outline_dropped}};
     if (recon[p].stood) jp["mesh"]["stood_on_foot"] = true;
     jparts.push_back(jp);
   }

@@ -35,6 +35,53 @@ void thin(Cloud* cloud, int max_points) {
   *cloud = std::move(out);
 }
 
+// The pixels outside `mask` within `radius` of it (a square
+// neighbourhood), looked for only about the mask's bounding box: per row,
+// then per column of that, the distance to the nearest set pixel on
+// either side, from one sweep each way.
+seq::Image8 ring_outside(const seq::Image8& mask, int radius) {
+  const int w = mask.width, h = mask.height;
+  seq::Image8 out = mask;
+  std::fill(out.pixels.begin(), out.pixels.end(), 0);
+  int u0 = w, u1 = -1, v0 = h, v1 = -1;
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u)
+      if (mask.pixels[static_cast<size_t>(v) * w + u]) {
+        u0 = std::min(u0, u), u1 = std::max(u1, u);
+        v0 = std::min(v0, v), v1 = std::max(v1, v);
+      }
+  if (u1 < 0) return out;
+  u0 = std::max(0, u0 - radius), u1 = std::min(w - 1, u1 + radius);
+  v0 = std::max(0, v0 - radius), v1 = std::min(h - 1, v1 + radius);
+  const int bw = u1 - u0 + 1, bh = v1 - v0 + 1;
+  auto near_one = [radius](const auto& at, int n, std::vector<uint8_t>* near) {
+    near->assign(n, 0);
+    int last = -radius - 1;
+    for (int i = 0; i < n; ++i) {
+      if (at(i)) last = i;
+      (*near)[i] = i - last <= radius;
+    }
+    last = n + radius;
+    for (int i = n - 1; i >= 0; --i) {
+      if (at(i)) last = i;
+      (*near)[i] |= last - i <= radius;
+    }
+  };
+  std::vector<uint8_t> rows(static_cast<size_t>(bw) * bh), line;
+  for (int v = 0; v < bh; ++v) {
+    near_one([&](int u) { return mask.pixels[static_cast<size_t>(v + v0) * w + u + u0] != 0; }, bw, &line);
+    std::copy(line.begin(), line.end(), rows.begin() + static_cast<long>(v) * bw);
+  }
+  for (int u = 0; u < bw; ++u) {
+    near_one([&](int v) { return rows[static_cast<size_t>(v) * bw + u] != 0; }, bh, &line);
+    for (int v = 0; v < bh; ++v) {
+      const size_t i = static_cast<size_t>(v + v0) * w + u + u0;
+      out.pixels[i] = line[v] && !mask.pixels[i] ? 255 : 0;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagnostics& diags,
@@ -92,6 +139,7 @@ bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagn
     pf.role = role;
     pf.mask = name;
     pf.clouds.resize(meta.frames);
+    pf.outlines.resize(meta.frames);
     pf.pixels.assign(meta.frames, 0);
     out->parts.push_back(std::move(pf));
   }
@@ -162,9 +210,18 @@ bool observe(const seq::Sequence& sequence, const ObserveOptions& options, Diagn
         BackprojectOptions part_bp = bp;
         if (pf.role != "object") part_bp.stride = 1;
         Cloud c = backproject(depth, meta.depth_scale, meta.intrinsics, &mask, part_bp);
+        // The outline's points by the same test and thinned by the same
+        // share: a voxel's count inside and outside compare like for like.
+        const seq::Image8 ring = ring_outside(mask, kOutlinePixels);
+        Cloud outline = backproject(depth, meta.depth_scale, meta.intrinsics, &ring, part_bp);
+        const size_t seen = c.size();
         thin(&c, pf.role == "object" ? options.max_points_static : options.max_points_moving);
+        if (seen > 0 && c.size() < seen)
+          thin(&outline, std::max(1, static_cast<int>(static_cast<double>(outline.size()) * c.size() / seen)));
         transform_cloud(out->camera_to_world[f], &c);
+        transform_cloud(out->camera_to_world[f], &outline);
         pf.clouds[f] = std::move(c);
+        pf.outlines[f] = std::move(outline);
       }
       if (failed) break;
       if (!hand_mask.empty() && (options.background || !out->hand_clouds.empty())) {

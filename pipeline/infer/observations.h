@@ -24,7 +24,17 @@ struct PartFrames {
   std::string mask;             // the mask folder its pixels come from
   std::vector<Cloud> clouds;    // per frame, world frame of poses.txt; empty when unseen
   std::vector<int> pixels;      // mask pixels per frame (before the depth test)
+  // Per frame, the points just outside the mask (within kOutlinePixels of
+  // it), thinned as `clouds` were: what a mask drawn a pixel or two too
+  // wide takes in (the face behind a knob's rim, the wall beside a body).
+  // Reconstruction keeps only the voxels more frames put inside the mask
+  // than just outside it. Empty with the motion fallback.
+  std::vector<Cloud> outlines;
 };
+
+// How far outside a mask its outline reaches: a segmenter's outline error
+// is a band a pixel or two wide (the synthetic realistic noise: up to 2).
+constexpr int kOutlinePixels = 3;
 
 struct Observations {
   std::vector<double> times;                       // per frame (poses.txt)

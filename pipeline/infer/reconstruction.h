@@ -2,9 +2,10 @@
 // frame's points are taken back to the part's q = 0 configuration (for a
 // moving part, through its registered motion; a fixed part's points are
 // already there once the camera is corrected) and fused (pipeline/cloud/
-// fusion.h: a voxel grid that keeps what several frames agree on), then
-// closed (the convex hull: watertight, so the compiler can take collision
-// and inertia from it).
+// fusion.h: a voxel grid that keeps what several frames agree on, and
+// what the masks put inside the part more often than just outside it:
+// the observations' outlines), then closed (the convex hull: watertight,
+// so the compiler can take collision and inertia from it).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -24,6 +25,7 @@ struct PartReconstruction {
   Cloud fused;               // object frame, q = 0
   TriMesh mesh;              // object frame, q = 0
   int frames_fused = 0;
+  int outline_dropped = 0;   // voxels the masks' vote dropped (PartFusion::fused)
   double volume = 0;         // m^3
   Eigen::AlignedBox3d bounds;
   bool stood = false;        // the mesh stands on its foot (stand_on_its_foot)
