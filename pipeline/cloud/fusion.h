@@ -16,7 +16,9 @@ namespace efc::pipeline {
 // part's own frame (the caller undoes the part's motion). Fuses them: a voxel grid
 // (voxel size) keeping per-voxel point count and centroid (normals averaged), drops voxels seen in
 // fewer than min_observations frames (each frame counts once per voxel: transient outliers
-// such as the hand or mask bleed do not survive), then statistical outlier removal.
+// such as the hand do not survive), optionally those another fusion (the part's mask
+// outline, fused alike) holds in more frames (mask bleed a segmenter repeats in
+// several frames does survive the count), then statistical outlier removal.
 //
 // Adaptive threshold: the observations a voxel needs are
 // clamp(min_observations, 1, frames()), so a part seen in a single frame keeps
