@@ -53,6 +53,12 @@ int PartFusion::required_observations() const {
   return std::clamp(options_.min_observations, 1, std::max(1, frames_));
 }
 
+// By the voxel's key where the grids agree, not its centroid: the mean of
+// points on a voxel's face may round across it.
+int PartFusion::outside_observations(const PartFusion& outside, const Voxel& v, bool same_grid) {
+  return same_grid ? outside.observations_of(v.key) : outside.observations_at(v.sum / static_cast<double>(v.count));
+}
+
 Cloud PartFusion::fused() const { return fused(nullptr, nullptr); }
 
 Cloud PartFusion::fused(const PartFusion* outside, int* dropped) const {
@@ -63,10 +69,7 @@ Cloud PartFusion::fused(const PartFusion* outside, int* dropped) const {
   const bool same_grid = outside && outside->options_.voxel == options_.voxel;
   for (const Voxel& v : voxels_) {
     if (v.observations < need) continue;
-    // By the voxel's key where the grids agree, not its centroid: the mean
-    // of points on a voxel's face may round across it.
-    if (outside && (same_grid ? outside->observations_of(v.key) : outside->observations_at(v.sum / static_cast<double>(v.count))) >
-                       v.observations) {
+    if (outside && outside_observations(*outside, v, same_grid) > v.observations) {
       if (dropped) ++*dropped;
       continue;
     }

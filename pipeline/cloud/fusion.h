@@ -67,6 +67,7 @@ class PartFusion {
     int last_frame = -1;    // so a frame counts once
   };
   int observations_of(const detail::VoxelKey& key) const;
+  static int outside_observations(const PartFusion& outside, const Voxel& v, bool same_grid);
   FusionOptions options_;
   int frames_ = 0;
   bool normals_ = true;  // every non-empty frame so far had normals
