@@ -11,6 +11,7 @@
 #include "pipeline/cloud/fusion.h"
 #include "pipeline/cloud/icp.h"
 #include "pipeline/cloud/kdtree.h"
+#include "pipeline/infer/ego_anchor.h"
 
 namespace efc::pipeline {
 
@@ -185,17 +186,16 @@ EgoMotion refine_ego_motion(const Observations& obs, const std::vector<int>& sta
     if (best_f >= 0) out.correction[f] = out.correction[best_f];
   }
 
-  // Anchor: drift is zero at the start, so the corrections of the first
-  // second should be the identity; make their mean so.
-  const double t0 = obs.times.front();
-  std::vector<Eigen::Isometry3d> early;
-  for (int f = 0; f < n; ++f) {
-    if (!out.registered[f]) continue;
-    if (obs.times[f] - t0 > 1.0 && early.size() >= 5) break;
-    early.push_back(out.correction[f]);
-  }
-  const Eigen::Isometry3d anchor = mean_transform(early).inverse();
-  for (Eigen::Isometry3d& T : out.correction) T = anchor * T;
+  // Anchor: drift is zero at the start, so the first frames place the
+  // model in the world best; how much better than later ones, the
+  // corrections' own noise says (ego_anchor.h).
+  Cloud reference_points = static_cloud(obs, static_parts, out.reference_frame);
+  transform_cloud(out.correction[out.reference_frame], &reference_points);
+  const EgoAnchor anchor = anchor_refined_world(obs.times, out.correction, out.registered,
+                                                reference_points.size() == 0 ? Eigen::Vector3d::Zero()
+                                                                         : centroid(reference_points));
+  for (Eigen::Isometry3d& T : out.correction) T = anchor.model_to_world * T;
+  out.anchor = anchor;
   // The caller gets the object's static parts alone (the object frame is
   // fitted to them), not the room: fused, or where too little survives the
   // fusion (a short, small recording), the reference frame's own points.

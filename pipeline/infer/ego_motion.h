@@ -9,13 +9,14 @@
 // (bench/ego_motion_eval: on a synthetic box with a vent, seen close up,
 // 1.0 degree median error from the object alone, 0.05 with the room).
 // Drift starts at zero, so the model is anchored where the tracker was still
-// right: the mean correction over the first second.
+// right: the first frames, weighted by the tracker's noise (ego_anchor.h).
 #pragma once
 
 #include <Eigen/Geometry>
 
 #include <vector>
 
+#include "pipeline/infer/ego_anchor.h"
 #include "pipeline/infer/observations.h"
 
 namespace efc::pipeline {
@@ -29,6 +30,7 @@ struct EgoMotion {
   std::vector<double> inliers;      // ICP inlier fraction per frame
   Cloud model;                      // the fused static parts (not the room), refined world frame
   int reference_frame = -1;
+  EgoAnchor anchor;                 // where the model frame sits in the world
   double seconds = 0;
 };
 

@@ -102,6 +102,7 @@ ojson joint_report(const JointEstimate& j) {
   r["bic"] = {{"fixed", j.bic_fixed}, {"prismatic", j.bic_prismatic}, {"revolute", j.bic_revolute}};
   if (j.has_part_track) r["from_part"] = fits(j.from_part);
   if (j.has_hand_track) r["from_hand"] = fits(j.from_hand);
+  if (j.has_swing_track) r["from_swing"] = fits(j.from_swing);
   if (j.has_grip_track) {
     r["from_grip"] = fits(j.from_grip);
     r["grip_visibility"] = j.grip_visibility;
@@ -185,6 +186,12 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     s["rmse_m"] = registered ? std::sqrt(rmse / registered) : 0.0;
     s["reference_frame"] = ego.reference_frame;
     s["model_points"] = ego.model.size();
+    // Where the refined world was anchored (ego_anchor.h): the tracker's
+    // noise read off the corrections, and how the frames were weighted.
+    s["anchor"] = {{"jitter_m", ego.anchor.jitter_m},
+                   {"walk_m_per_sqrt_s", ego.anchor.walk_m_per_sqrt_s},
+                   {"frames_weighted", ego.anchor.frames},
+                   {"weight_first_second", ego.anchor.weight_first_second}};
     stages.push_back(s);
   }
   if (progress) progress("infer: camera registered on " + std::to_string(static_parts.size()) + " static part(s)");

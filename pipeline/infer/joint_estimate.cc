@@ -644,6 +644,8 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       near_symmetry_axis(track.model, &symmetry)) {
     std::vector<std::vector<int>> swing_frames;
     swing = estimate_articulation(part_samples(track, model_centre, kPartBin, &swing_frames, true, &symmetry));
+    j.has_swing_track = true;
+    j.from_swing = swing;
     j.swing_past_slip = swing.type == "revolute" && !turns_about_itself(track.model, swing.axis, swing.origin) &&
                         visibility(track.model, "revolute", swing.axis, swing.origin) >= kSlipVisibility;
   }

@@ -43,8 +43,10 @@ struct JointEstimate {
   // Maps the track's reference configuration to q = 0.
   Eigen::Isometry3d reference_to_zero = Eigen::Isometry3d::Identity();
   std::string source = "none";  // which track gave the geometry: part, grip, hand, none
-  bool has_part_track = false, has_hand_track = false, has_grip_track = false;
-  Articulation from_part, from_hand, from_grip;
+  bool has_part_track = false, has_hand_track = false, has_grip_track = false, has_swing_track = false;
+  // from_swing: the part's track less its twist about its symmetry axis
+  // (swing_past_slip below), where it was tried.
+  Articulation from_part, from_hand, from_grip, from_swing;
   double bic_fixed = 0, bic_prismatic = 0, bic_revolute = 0;  // fused
   double confidence = 0;  // posterior of the chosen type under the fused BIC
   // A receptor the hand held whose motion neither track shows: moving by
