@@ -17,7 +17,9 @@
 // where the whole reconstruction sits off the truth, which every part's
 // Chamfer distance and every axis's origin sees); then the medians of those
 // over all sequences. EFC_EGO_VERBOSE=1 adds the anchor's noise estimates
-// (ego_anchor.h). Exit 1 when a sequence cannot be read.
+// (ego_anchor.h); EFC_EGO_FRAMES=1 every fifth frame's error at the centre
+// (mm, world axes) and its rotation, the tracker's then the refined poses'.
+// Exit 1 when a sequence cannot be read.
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -66,6 +68,11 @@ Errors errors(const std::vector<Eigen::Isometry3d>& truth, const std::vector<Eig
   mean_centre /= static_cast<double>(n);
   const Eigen::Matrix3d mean_rotation = efc::pipeline::mean_transform(E).rotation();
   std::vector<double> pos, rot;
+  if (std::getenv("EFC_EGO_FRAMES"))  // every fifth frame's error, before the constant is taken out
+    for (size_t f = 0; f < n; f += 5) {
+      const Eigen::Vector3d e = 1000 * (at_centre[f] - centre);
+      std::printf("   f %3zu err mm %6.1f %6.1f %6.1f  rot deg %.2f\n", f, e.x(), e.y(), e.z(), Eigen::AngleAxisd(E[f].rotation()).angle() * 180 / 3.14159265358979);
+    }
   for (size_t f = 0; f < n; ++f) {
     pos.push_back(1000 * (at_centre[f] - mean_centre).norm());
     rot.push_back(Eigen::AngleAxisd(E[f].rotation() * mean_rotation.transpose()).angle() * 180 / 3.14159265358979);
