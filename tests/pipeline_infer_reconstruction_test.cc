@@ -89,6 +89,97 @@ TEST(PipelineInferReconstruction, ABodyStandsOnItsFoot) {
   EXPECT_TRUE(r.bounds.isApprox(fine_bounds));
 }
 
+// A box seen from one corner (s0020's stove): two faces and the sliver of
+// its top along them, turned 0.3 rad about the vertical. Stood on its
+// foot, its hull is a prism over the hull of an L, half the box; squared,
+// it is the box. A hood (two boxes), a box whose hull is the box already
+// and a round body (a drum) keep their hulls.
+TEST(PipelineInferReconstruction, ABoxSeenFromACornerIsSquared) {
+  const double yaw = 0.3;
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(yaw, Vector3d::UnitZ()).toRotationMatrix();
+  PartReconstruction r;
+  auto add = [&](const Vector3d& p, const Vector3d& n) {
+    r.fused.points.push_back(turn * p);
+    r.fused.normals.push_back(turn * n);
+  };
+  // Points 1 cm apart, the edges included (by count: a float step would
+  // stop short of them).
+  auto along = [](double lo, double hi) {
+    std::vector<double> out;
+    const int n = static_cast<int>(std::lround((hi - lo) / 0.01));
+    for (int i = 0; i <= n; ++i) out.push_back(lo + (hi - lo) * i / n);
+    return out;
+  };
+  for (double a : along(-kW / 2, kW / 2))
+    for (double z : along(0, kH)) add({a, -kD / 2, z}, {0, -1, 0});  // front
+  for (double b : along(-kD / 2, kD / 2))
+    for (double z : along(0, kH)) add({kW / 2, b, z}, {1, 0, 0});  // right side
+  for (double a : along(-kW / 2, kW / 2))
+    for (double b : along(-kD / 2, kD / 2))
+      if (b < -kD / 2 + 0.05 || a > kW / 2 - 0.05) add({a, b, kH}, {0, 0, 1});  // the top's sliver
+  std::string error;
+  ASSERT_TRUE(convex_hull(r.fused.points, &r.mesh, &error)) << error;
+  r.volume = mesh_volume(r.mesh);
+  const double box = kW * kD * kH;
+  EXPECT_LT(r.volume, 0.6 * box);
+  ASSERT_TRUE(square_the_body(&r));
+  EXPECT_GT(r.box_share, 0.95);
+  EXPECT_NEAR(r.volume, box, 0.03 * box);
+  EXPECT_EQ(r.mesh.vertices.size(), 8u);
+  for (const Vector3d& v : r.mesh.vertices) {
+    const Vector3d local = turn.transpose() * v;
+    EXPECT_NEAR(std::abs(local.x()), kW / 2, 0.005) << local.transpose();
+    EXPECT_NEAR(std::abs(local.y()), kD / 2, 0.005) << local.transpose();
+    EXPECT_TRUE(std::abs(local.z()) < 0.005 || std::abs(local.z() - kH) < 0.005) << local.transpose();
+  }
+
+  // A hood: a canopy and the chimney on it, every face upright or level.
+  // What was seen of it lies inside the box of both (the chimney's front,
+  // the canopy's top), not on its faces: not a box.
+  PartReconstruction hood;
+  auto face = [&](const Vector3d& corner, const Vector3d& a, const Vector3d& b, const Vector3d& n) {
+    for (double i : along(0, 1))
+      for (double j : along(0, 1)) {
+        hood.fused.points.push_back(corner + i * a + j * b);
+        hood.fused.normals.push_back(n);
+      }
+  };
+  face({-0.3, -0.2, 0}, {0.6, 0, 0}, {0, 0, 0.06}, {0, -1, 0});        // canopy front
+  face({-0.3, -0.2, 0.06}, {0.6, 0, 0}, {0, 0.19, 0}, {0, 0, 1});      // canopy top, before the chimney
+  face({-0.1, -0.01, 0.06}, {0.2, 0, 0}, {0, 0, 0.39}, {0, -1, 0});    // chimney front
+  face({0.1, -0.01, 0.06}, {0, 0.16, 0}, {0, 0, 0.39}, {1, 0, 0});     // chimney side
+  face({-0.1, -0.01, 0.45}, {0.2, 0, 0}, {0, 0.16, 0}, {0, 0, 1});     // chimney top
+  ASSERT_TRUE(convex_hull(hood.fused.points, &hood.mesh, &error)) << error;
+  hood.volume = mesh_volume(hood.mesh);
+  EXPECT_FALSE(square_the_body(&hood));
+  EXPECT_GT(hood.box_share, 0.95);
+  EXPECT_LT(hood.box_surface_share, kBoxSurfaceShare);
+
+  // A box seen all round: its hull is the box already, and stays.
+  PartReconstruction whole = r;
+  whole.fused.points.clear(), whole.fused.normals.clear();
+  for (const Vector3d& v : r.mesh.vertices) whole.fused.points.push_back(v);
+  ASSERT_TRUE(convex_hull(whole.fused.points, &whole.mesh, &error)) << error;
+  whole.fused = r.fused;
+  whole.volume = mesh_volume(whole.mesh);
+  EXPECT_FALSE(square_the_body(&whole));
+  EXPECT_GT(whole.box_fill, kBoxFilled);
+
+  PartReconstruction drum;
+  const double radius = 0.3;
+  for (double t = 0; t < 6.283; t += 0.02)
+    for (double z : along(0, kH)) {
+      drum.fused.points.emplace_back(radius * std::cos(t), radius * std::sin(t), z);
+      drum.fused.normals.emplace_back(std::cos(t), std::sin(t), 0);
+    }
+  ASSERT_TRUE(convex_hull(drum.fused.points, &drum.mesh, &error)) << error;
+  drum.volume = mesh_volume(drum.mesh);
+  const size_t vertices = drum.mesh.vertices.size();
+  EXPECT_FALSE(square_the_body(&drum));
+  EXPECT_LT(drum.box_share, kBoxShare);
+  EXPECT_EQ(drum.mesh.vertices.size(), vertices);
+}
+
 TEST(PipelineInferReconstruction, APartNeverSeenDoesNotStand) {
   Observations obs;
   PartFrames empty;

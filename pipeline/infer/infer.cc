@@ -323,6 +323,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   }
   // The body stands on its foot (a static part: its points need no track).
   recon[root].stood = stand_on_its_foot(obs, root, to_object, &recon[root]);
+  // A box-shaped body is its box (what the corner of it in view implies).
+  recon[root].squared = square_the_body(&recon[root]);
   stages.push_back(stage("reconstruction", since(t0)));
   if (progress) progress("infer: parts reconstructed");
   std::vector<AssembledPart> assembled;
@@ -429,6 +431,12 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
                   {"frames_fused", recon[p].frames_fused},
                   {"outline_voxels_dropped", recon[p].outline_dropped}};
     if (recon[p].stood) jp["mesh"]["stood_on_foot"] = true;
+    if (recon[p].squared) jp["mesh"]["squared"] = true;
+    if (recon[p].box_share > 0) {
+      jp["mesh"]["box_share"] = recon[p].box_share;
+      jp["mesh"]["box_surface_share"] = recon[p].box_surface_share;
+      jp["mesh"]["box_fill"] = recon[p].box_fill;
+    }
     jparts.push_back(jp);
   }
   ojson jfun = ojson::array();
