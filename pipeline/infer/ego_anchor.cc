@@ -1,11 +1,12 @@
 #include "pipeline/infer/ego_anchor.h"
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "pipeline/infer/ego_motion.h"
 
 namespace efc::pipeline {
 namespace {
@@ -20,19 +21,6 @@ constexpr int kRatioSteps = 43;  // a factor of about 1.5 apart
 // The frames that measure (the first ones): a dense solve each try.
 constexpr size_t kMaxWeighted = 240;
 
-// The weighted chordal mean of rotations (the quaternions' scatter's
-// leading eigenvector).
-Eigen::Matrix3d weighted_mean_rotation(const std::vector<Eigen::Matrix3d>& rotations, const std::vector<double>& w) {
-  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
-  for (size_t i = 0; i < rotations.size(); ++i) {
-    const Eigen::Quaterniond q(rotations[i]);
-    const Eigen::Vector4d v(q.w(), q.x(), q.y(), q.z());
-    Q += w[i] * v * v.transpose();
-  }
-  const Eigen::Vector4d v = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(Q).eigenvectors().col(3);
-  return Eigen::Quaterniond(v(0), v(1), v(2), v(3)).normalized().toRotationMatrix();
-}
-
 }  // namespace
 
 EgoAnchor anchor_refined_world(const std::vector<double>& times, const std::vector<Eigen::Isometry3d>& correction,
@@ -41,13 +29,13 @@ EgoAnchor anchor_refined_world(const std::vector<double>& times, const std::vect
   const size_t n = std::min({times.size(), correction.size(), registered.size()});
   std::vector<double> t;
   std::vector<Eigen::Vector3d> y;
-  std::vector<Eigen::Matrix3d> r;
+  std::vector<Eigen::Isometry3d> inverse;
   for (size_t f = 0; f < n; ++f) {
     if (!registered[f]) continue;
     const Eigen::Isometry3d inv = correction[f].inverse();
     t.push_back(times[f] - times[0]);
     y.push_back(inv * centre);
-    r.push_back(inv.linear());
+    inverse.push_back(inv);
   }
   const size_t m = t.size();
   if (m == 0) return out;
@@ -107,7 +95,9 @@ EgoAnchor anchor_refined_world(const std::vector<double>& times, const std::vect
     out.frames += w[a] > 1e-6;
     if (t[a] <= 1.0) out.weight_first_second += w[a];
   }
-  out.model_to_world.linear() = weighted_mean_rotation(r, w);
+  // The rotation: the weighted quaternion mean of the frames' (their
+  // translations' mean is the centre's, above).
+  out.model_to_world.linear() = mean_transform(inverse, w).linear();
   out.model_to_world.translation() = mean_centre - out.model_to_world.linear() * centre;
   return out;
 }

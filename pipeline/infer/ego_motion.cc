@@ -15,21 +15,26 @@
 
 namespace efc::pipeline {
 
-Eigen::Isometry3d mean_transform(const std::vector<Eigen::Isometry3d>& transforms) {
+Eigen::Isometry3d mean_transform(const std::vector<Eigen::Isometry3d>& transforms, const std::vector<double>& weights) {
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
   if (transforms.empty()) return out;
+  const bool weighted = weights.size() == transforms.size();
   Eigen::Vector3d t = Eigen::Vector3d::Zero();
   Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
-  for (const Eigen::Isometry3d& T : transforms) {
-    t += T.translation();
+  double total = 0;
+  for (size_t i = 0; i < transforms.size(); ++i) {
+    const Eigen::Isometry3d& T = transforms[i];
+    const double w = weighted ? weights[i] : 1.0;
+    t += w * T.translation();
+    total += w;
     Eigen::Quaterniond q(T.linear());
     Eigen::Vector4d v(q.w(), q.x(), q.y(), q.z());
-    Q += v * v.transpose();
+    Q += w * v * v.transpose();
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Q);
   Eigen::Vector4d v = eig.eigenvectors().col(3);
   out.linear() = Eigen::Quaterniond(v(0), v(1), v(2), v(3)).normalized().toRotationMatrix();
-  out.translation() = t / static_cast<double>(transforms.size());
+  out.translation() = t / (weighted ? total : static_cast<double>(transforms.size()));
   return out;
 }
 

@@ -39,7 +39,9 @@ EgoMotion refine_ego_motion(const Observations& obs, const std::vector<int>& sta
                             const ProgressFn& progress);
 
 // The mean of rigid transforms (translations averaged, rotations by the
-// quaternion eigen-mean).
-Eigen::Isometry3d mean_transform(const std::vector<Eigen::Isometry3d>& transforms);
+// quaternion eigen-mean), each weighted by `weights` where given (one per
+// transform; they need not sum to one).
+Eigen::Isometry3d mean_transform(const std::vector<Eigen::Isometry3d>& transforms,
+                                 const std::vector<double>& weights = {});
 
 }  // namespace efc::pipeline

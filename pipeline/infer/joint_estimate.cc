@@ -636,16 +636,15 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // for a receptor (a small button's tilts random-walk too, and without
   // its twist they read as a swing). bench/README: what was tried.
   Eigen::Vector3d symmetry = Eigen::Vector3d::Zero();
-  Articulation swing;
   const bool part_shows_motion = part_visible && j.from_part.type != "fixed";
   const bool part_shows_a_slip =
       part_shows_motion && j.from_part.type == "revolute" && turn_a_slip_could_be(track.model, j.from_part);
   if (!operated && (!part_shows_motion || part_shows_a_slip) && j.has_part_track && part_reliable &&
       near_symmetry_axis(track.model, &symmetry)) {
     std::vector<std::vector<int>> swing_frames;
-    swing = estimate_articulation(part_samples(track, model_centre, kPartBin, &swing_frames, true, &symmetry));
+    j.from_swing = estimate_articulation(part_samples(track, model_centre, kPartBin, &swing_frames, true, &symmetry));
     j.has_swing_track = true;
-    j.from_swing = swing;
+    const Articulation& swing = j.from_swing;
     j.swing_past_slip = swing.type == "revolute" && !turns_about_itself(track.model, swing.axis, swing.origin) &&
                         visibility(track.model, "revolute", swing.axis, swing.origin) >= kSlipVisibility;
   }
@@ -688,7 +687,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   const bool hand_decides = !part_decides && !grip_decides && j.has_hand_track && j.from_hand.type != "fixed";
   std::string type = "fixed";
   const Articulation* decider = nullptr;
-  if (j.swing_past_slip) type = "revolute", decider = &swing;
+  if (j.swing_past_slip) type = "revolute", decider = &j.from_swing;
   else if (j.press_past_slip) type = "prismatic";
   else if (part_decides) type = j.from_part.type, decider = &j.from_part;
   else if (grip_decides) type = j.from_grip.type, decider = &j.from_grip;

@@ -157,7 +157,7 @@ bool square_the_body(PartReconstruction* recon) {
   if (recon->box_surface_share < kBoxSurfaceShare) return false;
   // A hull that fills its box already gains nothing (its bevels fit a
   // body's inset foot better than the box's corners do).
-  double box_volume = size.prod();
+  const double box_volume = size.prod();
   recon->box_fill = box_volume > 0 ? recon->volume / box_volume : 1.0;
   if (recon->box_fill >= kBoxFilled) return false;
   std::vector<Eigen::Vector3d> corners;
