@@ -15,6 +15,7 @@
 
 #include <unistd.h>
 
+#include "pipeline/templates/effect_names.h"
 #include "pipeline/templates/frame_signals.h"
 #include "pipeline/templates/mapping_fit.h"
 #include "pipeline/templates/template_input.h"
@@ -636,4 +637,60 @@ TEST(TemplatesVlm, GarbageErrorsAndClosedPortsAreWarnings) {
     EXPECT_EQ(got[0].effect, base[0].effect) << mode;
     EXPECT_EQ(got[0].mapping, base[0].mapping) << mode;
   }
+}
+
+TEST(TemplatesNames, EachWordNamesOneEffect) {
+  using efc::pipeline::effect_named;
+  // The effector's head noun first, then the function's.
+  EXPECT_EQ(effect_named("hob_lamp", "hob_on"), 1);       // a lamp on a hob lights
+  EXPECT_EQ(effect_named("burner_left", "heat_left"), 2);
+  EXPECT_EQ(effect_named("spout", "water"), 3);
+  EXPECT_EQ(effect_named("blower", "extract"), 4);
+  EXPECT_EQ(effect_named("lid", "open_lid"), 0);
+  EXPECT_EQ(effect_named("head", "brew"), 3);             // "head" names nothing
+  EXPECT_EQ(effect_named("lamps", "lights"), 1);          // plurals
+  EXPECT_EQ(effect_named("FanBlade", "stop"), 4);         // camel case
+  EXPECT_EQ(effect_named("indicator_led", "fan_stop"), 1);  // the effector's word wins
+  EXPECT_EQ(effect_named("head", "speed"), -1);
+  EXPECT_EQ(effect_named("", ""), -1);
+  EXPECT_EQ(effect_named("grill", "press"), -1);          // a heater or a vent: neither
+  EXPECT_EQ(effect_named("gas", "s"), -1);                // no "s" stripped from short words
+}
+
+TEST(TemplatesNames, WhereNothingRespondsTheNamesGuessTheEffect) {
+  // A receptor that never moves explains no signal at the effector: the
+  // effect is a guess (E1062), the names' where they name one.
+  efc::test::TruthInput t;
+  std::string why;
+  ASSERT_TRUE(efc::test::load_truth_input(kCumulativeGeometry, &t, &why)) << why;
+  ASSERT_EQ(t.input.functions.size(), 1u);
+  for (efc::pipeline::PartObservation& p : t.input.parts)
+    if (p.name == t.input.functions[0].receptor) {
+      std::fill(p.q.begin(), p.q.end(), 0.0);
+      p.q_hand.clear();
+    }
+  auto guess = [&](const std::string& function_name, std::string* from, std::string* warning) {
+    t.input.functions[0].name = function_name;
+    efc::Diagnostics diags;
+    const auto got = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+    EXPECT_EQ(got.size(), 1u);
+    if (got.empty()) return std::string();
+    EXPECT_FALSE(got[0].report["evident"].get<bool>());
+    EXPECT_LE(got[0].confidence, 0.2);
+    *from = got[0].report["guess_from"].get<std::string>();
+    std::ostringstream os;
+    diags.print(os, false);
+    *warning = os.str();
+    return got[0].effect["type"].get<std::string>();
+  };
+  std::string from, warning;
+  EXPECT_EQ(guess("water", &from, &warning), "fluid");  // the effector, "ram", names nothing
+  EXPECT_EQ(from, "names");
+  EXPECT_NE(warning.find("E1062"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("(fluid, from the names)"), std::string::npos) << warning;
+  EXPECT_EQ(guess("blow", &from, &warning), "airflow");
+  EXPECT_EQ(guess("lift", &from, &warning), "geometry");  // the ram is movable
+  EXPECT_EQ(guess("twist", &from, &warning), "temperature");
+  EXPECT_EQ(from, "default");
+  EXPECT_NE(warning.find("(temperature)"), std::string::npos) << warning;
 }

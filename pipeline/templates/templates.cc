@@ -6,6 +6,7 @@
 #include <set>
 #include <limits>
 
+#include "pipeline/templates/effect_names.h"
 #include "pipeline/templates/frame_signals.h"
 #include "pipeline/templates/mapping_fit.h"
 #include "pipeline/templates/template_input.h"
@@ -295,12 +296,17 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
       if (k == 0 && !(eff && movable(*eff))) continue;  // geometry needs a movable effector
       effect_post[k] = std::exp(0.5 * (H[k].evidence - best_ev));
     }
+    // Nothing responds visibly: the names' effect where they name one
+    // (effect_names.h), else temperature (a heated part may not glow within
+    // the clip, a long time constant or a cooler, where a light, a flow, air
+    // or a moving part would have shown).
+    std::string guess_from = "none";
     if (!evident) {
-      // Nothing responds visibly. A heated part may not glow within the clip
-      // (long time constant, or a cooler); a light, a flow, air or a moving
-      // part would have shown. Best guess: temperature.
+      int guess = effect_named(F.effector, F.name);
+      guess_from = "names";
+      if (guess < 0 || (guess == 0 && !(eff && movable(*eff)))) guess = 2, guess_from = "default";
       std::fill(effect_post.begin(), effect_post.end(), 0.05);
-      effect_post[2] = 0.8;
+      effect_post[guess] = 0.8;
       if (!(eff && movable(*eff))) effect_post[0] = 0;
     }
 
@@ -349,7 +355,8 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     if (!evident)
       diags.warning("E1062", seq_file, 0, 0, where,
                     "function '" + F.name + "': no signal at the effector '" + F.effector +
-                        "' follows the receptor; the effect is a guess (" + kEffects[ek] + ")",
+                        "' follows the receptor; the effect is a guess (" + kEffects[ek] +
+                        (guess_from == "names" ? ", from the names" : "") + ")",
                     "a longer recording, or the effector kept in view, shows the effect");
     Hypothesis& h = H[ek];
     int mk = static_cast<int>(std::max_element(h.mapping_post.begin(), h.mapping_post.end()) - h.mapping_post.begin());
@@ -432,6 +439,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     R.report = {{"effect", kEffects[ek]},
                 {"mapping", kMappings[mk]},
                 {"evident", evident},
+                {"guess_from", guess_from},
                 {"min_evidence", kMinEvidence},
                 {"hypotheses", hyps},
                 {"chosen_model", to_json(model)},
