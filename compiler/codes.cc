@@ -530,8 +530,9 @@ const std::vector<CodeInfo>& all_codes() {
       {"E1062", "no signal follows the receptor",
        "None of the effector's signals (its joint, brightness, redness, droplets below\n"
        "it, air motes around it) is explained by the receptor better than by noise (BIC\n"
-       "gain under 10). The effect is guessed as temperature (a slow heater may not\n"
-       "glow within the clip) with low confidence.\n"
+       "gain under 10). The effect is guessed, with low confidence, from the names of\n"
+       "the effector and the function where they name one (\"spout\": fluid, \"hob_lamp\":\n"
+       "illumination), else as temperature (a slow heater may not glow within the clip).\n"
        "Fix: a longer recording, the effector in view while it responds."},
       {"E1063", "the vision-language model gave no usable answer",
        "The optional adapter (--vlm-endpoint) could not reach the server, got an HTTP\n"
