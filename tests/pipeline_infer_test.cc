@@ -216,6 +216,45 @@ TEST(PipelineInfer, AnEffectorsRegistrationThatSlipsRoundItselfLeavesItFixed) {
   EXPECT_FALSE(driven.turn_taken_for_slip);
 }
 
+TEST(PipelineInfer, ARoundShadeSeenFromOneSideSlipsRoundItselfToo) {
+  // A lamp's round shade seen from one side only: the front half of a ring.
+  // Its points' middle lies on the half seen, a radius off its axis, so
+  // the turn is not about the part by turns_about_itself's test, yet its
+  // shape shows the spin no better than a whole ring's: nobody operates it,
+  // and the turn is the registration's slip (s0010's lamp, typed
+  // continuous through 15 rad).
+  Cloud half;
+  const Cloud whole = ring(0.06, 0.05);
+  for (size_t i = 0; i < whole.size(); ++i)
+    if (whole.points[i].y() < 0) half.points.push_back(whole.points[i]), half.normals.push_back(whole.normals[i]);
+  // A seam down its front, the little that shows the spin.
+  for (int h = 0; h < 5; ++h)
+    for (int side : {-1, 1}) {
+      half.points.push_back(Vector3d(side * 0.002, -0.062, 0.0125 * h));
+      half.normals.push_back(Vector3d(side, 0, 0));
+    }
+  EXPECT_FALSE(turns_about_itself(half, Vector3d::UnitZ(), Vector3d::Zero()));
+  const double shown = visibility(half, "revolute", Vector3d::UnitZ(), Vector3d::Zero());
+  EXPECT_GT(shown, kMinVisibility);
+  EXPECT_LT(shown, kSlipVisibility);
+  const int frames = 150;
+  PartTrack t = turning(half, Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0003, 43);
+  std::mt19937 rng(43);
+  std::normal_distribution<double> g(0, 1);
+  double slip = 0;
+  for (int f = 0; f < frames; ++f) {
+    slip += 0.05 * g(rng);
+    t.motion[f].linear() = Eigen::AngleAxisd(slip, Vector3d::UnitZ()).toRotationMatrix();
+  }
+  with_information(&t);
+  const JointEstimate shade = estimate_joint(t, no_hand(frames), false);
+  EXPECT_EQ(shade.type, "fixed");
+  EXPECT_TRUE(shade.turn_taken_for_slip);
+  // Operated, the same turn is a knob's.
+  const JointEstimate knob = estimate_joint(t, no_hand(frames), true);
+  EXPECT_NE(knob.type, "fixed");
+}
+
 TEST(PipelineInfer, AReceptorsPressShowsPastItsSlip) {
   // A round button the hand operates: its registration spins it about its
   // axis by whole radians from frame to frame and wanders 2 mm across the

@@ -833,12 +833,17 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       std::fill(q.begin(), q.end(), kNaN);
       for (size_t k = 0; k < frames.size() && k < a.slide.size(); ++k)
         for (int f : frames[k]) q[f] = sign * a.slide[k];
-    } else if (!grip_decides && !j.swing_past_slip && type == "revolute" && !operated && !j.has_hand_track && turn_a_slip_could_be(track.model, a)) {
-      // Nobody operates it, and the turn is one its registration can slip
-      // into (a round LED, a burner, a grille's disc): the turn is the slip
-      // and the part stays where it is. A driven lid or door turns about a
-      // hinge beside it, which its shape shows plainly; a receptor's turn
-      // about itself is a knob's (without a hand track: --no-hands).
+    } else if (!grip_decides && !j.swing_past_slip && type == "revolute" && !operated && !j.has_hand_track &&
+               visibility(track.model, "revolute", a.axis, a.origin) < kSlipVisibility) {
+      // Nobody operates it, and the turn is one its shape barely shows, one
+      // its registration can slip into (a round LED, a burner, a grille's
+      // disc, a lamp's shade): the turn is the slip and the part stays where
+      // it is. A driven lid or door turns about a hinge beside it, which its
+      // shape shows plainly; a receptor's turn about itself is a knob's
+      // (without a hand track: --no-hands). The visibility alone decides,
+      // not turns_about_itself as well: a shade seen from one side has its
+      // points' middle on the half in view, a radius off its axis (s0010's
+      // lamp, typed continuous through 15 rad of slip).
       j.type = "fixed";
       j.turn_taken_for_slip = true;
       j.confidence = 0.5;  // by the rule, not by the likelihoods (which favour the turn)

@@ -57,10 +57,9 @@ struct JointEstimate {
   // (Articulation::slide_bic), so the turn is taken for the registration
   // slipping round a near-symmetry and the slide for the motion.
   bool slide_over_turn = false;
-  // A part no hand held whose track turns about an axis through itself, a
-  // turn its shape barely shows, and that shows no slide either: typed
-  // fixed, the turn taken for its registration slipping round a
-  // near-symmetry.
+  // A part no hand held whose track turns, a turn its shape barely shows,
+  // and that shows no slide either: typed fixed, the turn taken for its
+  // registration slipping round a near-symmetry.
   bool turn_taken_for_slip = false;
   // A near-symmetric part whose track, less its twist about its symmetry
   // axis, swings about a hinge beside it that its shape plainly shows: the
