@@ -693,4 +693,18 @@ TEST(TemplatesNames, WhereNothingRespondsTheNamesGuessTheEffect) {
   EXPECT_EQ(guess("twist", &from, &warning), "temperature");
   EXPECT_EQ(from, "default");
   EXPECT_NE(warning.find("(temperature)"), std::string::npos) << warning;
+  // A second function on the same effector whose names speak of the same
+  // effect cannot set it too (E0307): its guess is another, and not the
+  // names'.
+  t.input.functions[0].name = "water";
+  efc::seq::FunctionRef twin = t.input.functions[0];
+  twin.name = "spray";
+  t.input.functions.push_back(twin);
+  efc::Diagnostics diags;
+  const auto both = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(both[0].effect["type"], "fluid");
+  EXPECT_EQ(both[0].report["guess_from"], "names");
+  EXPECT_NE(both[1].effect["type"], "fluid");
+  EXPECT_EQ(both[1].report["guess_from"], "other");
 }

@@ -301,8 +301,9 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     // the clip, a long time constant or a cooler, where a light, a flow, air
     // or a moving part would have shown).
     std::string guess_from = "none";
+    int guess = -1;
     if (!evident) {
-      int guess = effect_named(F.effector, F.name);
+      guess = effect_named(F.effector, F.name);
       guess_from = "names";
       if (guess < 0 || (guess == 0 && !(eff && movable(*eff)))) guess = 2, guess_from = "default";
       std::fill(effect_post.begin(), effect_post.end(), 0.05);
@@ -352,6 +353,9 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     for (double& p : effect_post) p /= total;
     const int ek = static_cast<int>(std::max_element(effect_post.begin(), effect_post.end()) - effect_post.begin());
     taken.insert(ek);
+    // The guess moved by the second opinion, or taken by an earlier function
+    // on the same effector: not the names' nor the default's.
+    if (!evident && ek != guess) guess_from = "other";
     if (!evident)
       diags.warning("E1062", seq_file, 0, 0, where,
                     "function '" + F.name + "': no signal at the effector '" + F.effector +
