@@ -487,6 +487,16 @@ bool have_vlm() {
   return efc::pipeline::vlm_available(&why);
 }
 
+// The templates of `input` with a twin of its first function, named `name`,
+// on the same receptor and effector.
+std::vector<efc::pipeline::InferredFunction> with_twin(efc::pipeline::TemplateInput input, const std::string& name) {
+  efc::seq::FunctionRef twin = input.functions[0];
+  twin.name = name;
+  input.functions.push_back(twin);
+  efc::Diagnostics diags;
+  return efc::pipeline::infer_templates(input, efc::pipeline::TemplateOptions{}, diags);
+}
+
 }  // namespace
 
 TEST(TemplatesFit, TwoFunctionsOnOnePartSetDifferentEffects) {
@@ -496,11 +506,7 @@ TEST(TemplatesFit, TwoFunctionsOnOnePartSetDifferentEffects) {
   std::string why;
   ASSERT_TRUE(efc::test::load_truth_input(kCumulativeGeometry, &t, &why)) << why;
   ASSERT_EQ(t.input.functions.size(), 1u);
-  efc::seq::FunctionRef twin = t.input.functions[0];
-  twin.name = "twin";
-  t.input.functions.push_back(twin);
-  efc::Diagnostics diags;
-  const auto got = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  const auto got = with_twin(t.input, "twin");
   ASSERT_EQ(got.size(), 2u);
   EXPECT_EQ(got[0].effect["type"], "geometry");  // the ram's joint answers for the first
   EXPECT_NE(got[1].effect["type"], got[0].effect["type"]);
@@ -697,11 +703,7 @@ TEST(TemplatesNames, WhereNothingRespondsTheNamesGuessTheEffect) {
   // effect cannot set it too (E0307): its guess is another, and not the
   // names'.
   t.input.functions[0].name = "water";
-  efc::seq::FunctionRef twin = t.input.functions[0];
-  twin.name = "spray";
-  t.input.functions.push_back(twin);
-  efc::Diagnostics diags;
-  const auto both = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  const auto both = with_twin(t.input, "spray");
   ASSERT_EQ(both.size(), 2u);
   EXPECT_EQ(both[0].effect["type"], "fluid");
   EXPECT_EQ(both[0].report["guess_from"], "names");

@@ -161,6 +161,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     missing.joint_type = "revolute";
     const PartObservation& rec = ri >= 0 ? input.parts[ri] : missing;
     const PartObservation* eff = ei >= 0 ? &input.parts[ei] : nullptr;
+    const bool effector_movable = eff && movable(*eff);  // geometry needs a movable effector
     double r_lo, r_hi;
     receptor_range(rec, &r_lo, &r_hi);
 
@@ -199,7 +200,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     };
     std::vector<std::vector<double>> signal(5);
     std::vector<double> surround;
-    if (eff && movable(*eff) && !eff->q.empty()) signal[0] = frames_long(eff->q);
+    if (effector_movable && !eff->q.empty()) signal[0] = frames_long(eff->q);
     const bool effector_moves =
         !signal[0].empty() && spread(signal[0]) >= 1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3);
     if (sig) {
@@ -293,7 +294,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     for (int k = 0; k < 5; ++k) best_ev = std::max(best_ev, H[k].evidence);
     const bool evident = best_ev >= kMinEvidence;
     for (int k = 0; k < 5; ++k) {
-      if (k == 0 && !(eff && movable(*eff))) continue;  // geometry needs a movable effector
+      if (k == 0 && !effector_movable) continue;
       effect_post[k] = std::exp(0.5 * (H[k].evidence - best_ev));
     }
     // Nothing responds visibly: the names' effect where they name one
@@ -305,10 +306,10 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     if (!evident) {
       guess = effect_named(F.effector, F.name);
       guess_from = "names";
-      if (guess < 0 || (guess == 0 && !(eff && movable(*eff)))) guess = 2, guess_from = "default";
+      if (guess < 0 || (guess == 0 && !effector_movable)) guess = 2, guess_from = "default";
       std::fill(effect_post.begin(), effect_post.end(), 0.05);
       effect_post[guess] = 0.8;
-      if (!(eff && movable(*eff))) effect_post[0] = 0;
+      if (!effector_movable) effect_post[0] = 0;
     }
 
     // ---- the optional second opinion
@@ -345,7 +346,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     if (total <= 0) {
       effect_post.assign(5, 0.2);
       for (int k : taken) effect_post[k] = 0;
-      if (!(eff && movable(*eff))) effect_post[0] = 0;
+      if (!effector_movable) effect_post[0] = 0;
       total = 0;
       for (double p : effect_post) total += p;
       if (total <= 0) effect_post.assign(5, 0.2), total = 1;
