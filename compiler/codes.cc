@@ -533,6 +533,10 @@ const std::vector<CodeInfo>& all_codes() {
        "gain under 10). The effect is guessed, with low confidence, from the names of\n"
        "the effector and the function where they name one (\"spout\": fluid, \"hob_lamp\":\n"
        "illumination), else as temperature (a slow heater may not glow within the clip).\n"
+       "The mapping is guessed from the receptor's name where it names one (a door,\n"
+       "lid or drawer, a switch: binary; a slider, wheel or dimmer: linear; a plus,\n"
+       "minus, up or down button: cumulative) with the spec's default parameters,\n"
+       "else it is the best fit to the noise.\n"
        "Fix: a longer recording, the effector in view while it responds."},
       {"E1063", "the vision-language model gave no usable answer",
        "The optional adapter (--vlm-endpoint) could not reach the server, got an HTTP\n"

@@ -18,6 +18,7 @@
 #include "pipeline/templates/effect_names.h"
 #include "pipeline/templates/frame_signals.h"
 #include "pipeline/templates/mapping_fit.h"
+#include "pipeline/templates/mapping_names.h"
 #include "pipeline/templates/template_input.h"
 #include "pipeline/templates/vlm_client.h"
 #include "pipeline_templates_truth.h"
@@ -390,9 +391,9 @@ TEST(TemplatesSuite, DumpSignals) {
     const auto& q = t.input.parts[r].q;
     const auto& qe = t.input.parts[e].q;
     for (size_t i = 0; i < sig[0].glow.size(); ++i)
-      std::printf("%3zu sR %8.4f qE %8.4f glow %7.4f heat %7.4f drop %10.3g mote %10.3g\n", i,
+      std::printf("%3zu sR %8.4f qE %8.4f glow %7.4f heat %7.4f drop %10.3g mote %10.3g around %7.4f\n", i,
                   i < q.size() ? q[i] : NAN, i < qe.size() ? qe[i] : NAN, sig[0].glow[i], sig[0].heat[i],
-                  sig[0].droplets[i] * 1e6, sig[0].motes[i] * 1e6);
+                  sig[0].droplets[i] * 1e6, sig[0].motes[i] * 1e6, sig[0].surround[i]);
   }
 }
 
@@ -709,4 +710,104 @@ TEST(TemplatesNames, WhereNothingRespondsTheNamesGuessTheEffect) {
   EXPECT_EQ(both[0].report["guess_from"], "names");
   EXPECT_NE(both[1].effect["type"], "fluid");
   EXPECT_EQ(both[1].report["guess_from"], "other");
+}
+
+TEST(TemplatesNames, EachReceptorWordNamesOneMapping) {
+  using efc::pipeline::mapping_named;  // 0 binary, 1 step, 2 linear, 3 cumulative
+  EXPECT_EQ(mapping_named("door"), 0);          // a door's switch trips at a point of its travel
+  EXPECT_EQ(mapping_named("drawer"), 0);
+  EXPECT_EQ(mapping_named("power_switch"), 0);
+  EXPECT_EQ(mapping_named("fan_slider"), 2);    // a slider sets a level
+  EXPECT_EQ(mapping_named("HandWheel"), 2);     // camel case
+  EXPECT_EQ(mapping_named("flow_up"), 3);       // an up button adds a step
+  EXPECT_EQ(mapping_named("plus_button"), 3);
+  EXPECT_EQ(mapping_named("door_plus"), 3);     // the last word that names one
+  EXPECT_EQ(mapping_named("doors"), 0);         // plurals
+  for (const char* none : {"knob", "dial", "lever", "button", "light_button", "crank", "paddle", ""})
+    EXPECT_EQ(mapping_named(none), -1) << none;
+}
+
+TEST(TemplatesNames, WhereNothingRespondsTheReceptorsNameGuessesTheMapping) {
+  // A receptor that never moves explains nothing: the mapping fitted to the
+  // noise says nothing either, and the receptor's name decides where it
+  // names a mapping, with the spec's default parameters. Where the effector
+  // responds, the name changes nothing.
+  efc::test::TruthInput t;
+  std::string why;
+  ASSERT_TRUE(efc::test::load_truth_input(kCumulativeGeometry, &t, &why)) << why;
+  ASSERT_EQ(t.input.functions.size(), 1u);
+  efc::Diagnostics diags;
+  const auto responding = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  ASSERT_EQ(responding.size(), 1u);
+  ASSERT_TRUE(responding[0].report["evident"].get<bool>());
+  const std::string receptor = t.input.functions[0].receptor;
+  auto with_receptor_named = [&](const std::string& name, bool still) {
+    efc::pipeline::TemplateInput in = t.input;
+    in.functions[0].receptor = name;
+    for (efc::pipeline::PartObservation& p : in.parts)
+      if (p.name == receptor) {
+        p.name = name;
+        if (still) std::fill(p.q.begin(), p.q.end(), 0.0), p.q_hand.clear();
+      }
+    efc::Diagnostics d;
+    auto got = efc::pipeline::infer_templates(in, efc::pipeline::TemplateOptions{}, d);
+    std::ostringstream os;
+    d.print(os, false);
+    if (!got.empty()) got[0].report["warnings"] = os.str();
+    return got;
+  };
+  const auto door = with_receptor_named("door", true);
+  ASSERT_EQ(door.size(), 1u);
+  EXPECT_FALSE(door[0].report["evident"].get<bool>());
+  EXPECT_EQ(door[0].mapping["type"], "binary");
+  EXPECT_EQ(door[0].report["mapping_from"], "names");
+  EXPECT_NE(door[0].report["warnings"].get<std::string>().find("binary, from the receptor's name"), std::string::npos)
+      << door[0].report["warnings"];
+  const auto slider = with_receptor_named("fan_slider", true);
+  ASSERT_EQ(slider.size(), 1u);
+  EXPECT_EQ(slider[0].mapping["type"], "linear");
+  const auto up = with_receptor_named("flow_up", true);
+  ASSERT_EQ(up.size(), 1u);
+  EXPECT_EQ(up[0].mapping["type"], "cumulative");
+  const auto knob = with_receptor_named("knob", true);
+  ASSERT_EQ(knob.size(), 1u);
+  EXPECT_EQ(knob[0].report["mapping_from"], "noise");  // "knob" names none
+  // The ram follows the button press by press: the data's cumulative map,
+  // whatever the button is called.
+  const auto pressed = with_receptor_named("door", false);
+  ASSERT_EQ(pressed.size(), 1u);
+  EXPECT_TRUE(pressed[0].report["evident"].get<bool>());
+  EXPECT_EQ(pressed[0].report["mapping_from"], "data");
+  EXPECT_EQ(pressed[0].mapping, responding[0].mapping);
+}
+
+TEST(TemplatesSignals, TheSurroundComparesEachSurfacePointWithItself) {
+  // A door opening hides a lit front (cell 1, 0.8) and reveals a dark inside
+  // (cell 2, 0.2); a wall (cell 3, 0.5) is seen throughout. The lighting is
+  // the same all along: the plain mean would fall from 0.65 to 0.35 with the
+  // door; the surround stays flat. Then a lamp lights every cell by 0.1 in
+  // the last three frames: the surround rises by that.
+  using efc::pipeline::CellLum;
+  auto frames_for = [](double lamp_rise) {
+    std::vector<std::vector<CellLum>> f(10);
+    for (int i = 0; i < 10; ++i) {
+      const double lit = i >= 7 ? lamp_rise : 0.0;
+      if (i < 5) f[i].push_back({1, 4 * (0.8 + lit), 4});
+      if (i >= 5) f[i].push_back({2, 2 * (0.2 + lit), 2});
+      f[i].push_back({3, 0.5 + lit, 1});
+    }
+    f[9].push_back({4, 0.99, 1});  // seen once: no reference, left out
+    return f;
+  };
+  const std::vector<double> door = efc::pipeline::surround_from_cells(frames_for(0.0));
+  ASSERT_EQ(door.size(), 10u);
+  for (double v : door) EXPECT_NEAR(v, door[0], 1e-12);
+  const std::vector<double> lamp = efc::pipeline::surround_from_cells(frames_for(0.1));
+  // Frame 2: the front at its mean, the wall 0.03 below its (0.53); frame
+  // 8: the inside 0.04 above its (0.26), the wall 0.07 above.
+  EXPECT_NEAR(lamp[8] - lamp[2], 0.055 + 0.015, 1e-9);
+  std::vector<std::vector<CellLum>> gap = frames_for(0.0);
+  gap[4].clear();
+  EXPECT_TRUE(std::isnan(efc::pipeline::surround_from_cells(gap)[4]));  // a frame that sees no cell
+  EXPECT_TRUE(efc::pipeline::surround_from_cells({}).empty());
 }

@@ -36,7 +36,9 @@ const std::map<std::string, int>& lexicon() {
   return words;
 }
 
-std::vector<std::string> words_of(const std::string& name) {
+}  // namespace
+
+std::vector<std::string> name_words(const std::string& name) {
   std::vector<std::string> out;
   std::string cur;
   auto flush = [&] {
@@ -55,6 +57,8 @@ std::vector<std::string> words_of(const std::string& name) {
   return out;
 }
 
+namespace {
+
 int word_effect(const std::string& word) {
   const auto& w = lexicon();
   auto it = w.find(word);
@@ -69,7 +73,7 @@ int word_effect(const std::string& word) {
 // The last word of `name` that names an effect.
 int last_named(const std::string& name) {
   int found = -1;
-  for (const std::string& word : words_of(name))
+  for (const std::string& word : name_words(name))
     if (const int e = word_effect(word); e >= 0) found = e;
   return found;
 }

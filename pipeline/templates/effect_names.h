@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace efc::pipeline {
 
@@ -22,5 +23,9 @@ namespace efc::pipeline {
 // ("doorLight"), compared in lower case, a plural's "s" dropped where the
 // word itself is not listed.
 int effect_named(const std::string& effector, const std::string& function);
+
+// A name's words, as effect_named splits them: at anything but letters and
+// digits and at lower-to-upper case changes, in lower case.
+std::vector<std::string> name_words(const std::string& name);
 
 }  // namespace efc::pipeline

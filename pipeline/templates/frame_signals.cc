@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <thread>
 
@@ -27,7 +28,10 @@ constexpr double kMaxBackgroundStep = 10;  // grey levels: ... which are alike
 // surface around it, which fills much of that neighbourhood.
 constexpr int kStreakReach = 8;
 constexpr double kMaxLikeShare = 0.2;
-constexpr double kFallSide = 0.15;     // m: droplets thrown forward as they fall     // px: blobs up to ~7 px across
+constexpr double kFallSide = 0.15;     // m: droplets thrown forward as they fall
+// The surround's luminance is compared point for point: object-frame cells
+// of this size, each against its own mean over the frames that see it.
+constexpr double kSurroundCell = 0.02;  // m
 
 
 // A blob pixel's kind from its colour: 1 water blue (blue well above red,
@@ -142,9 +146,60 @@ double ray_distance(const Eigen::Vector3d& eye, const Eigen::Vector3d& d, double
   return best;
 }
 
+// An object-frame point's cell, packed (20 bits a coordinate: +-10 km at 2 cm).
+int64_t cell_of(const Eigen::Vector3d& p) {
+  auto q = [](double v) { return (static_cast<int64_t>(std::floor(v / kSurroundCell)) + (1 << 19)) & 0xFFFFF; };
+  return (q(p.x()) << 40) | (q(p.y()) << 20) | q(p.z());
+}
+
+}  // namespace
+
+std::vector<double> surround_from_cells(const std::vector<std::vector<CellLum>>& frames) {
+  std::vector<double> out(frames.size(), kNaN);
+  // Each cell's mean over the frames that see it: (cell, its frame means'
+  // sum, frames), sorted by cell.
+  std::vector<std::pair<int64_t, double>> seen;
+  for (const auto& f : frames)
+    for (const CellLum& c : f) seen.push_back({c.cell, c.sum / c.count});
+  std::sort(seen.begin(), seen.end());
+  struct CellMean {
+    int64_t cell;
+    double sum;
+    int frames;
+  };
+  std::vector<CellMean> mean;
+  for (const auto& [cell, lum] : seen) {
+    if (mean.empty() || mean.back().cell != cell) mean.push_back({cell, 0.0, 0});
+    mean.back().sum += lum;
+    ++mean.back().frames;
+  }
+  double grand = 0;
+  long grand_n = 0;
+  for (const CellMean& m : mean)
+    if (m.frames >= 2) grand += m.sum / m.frames, ++grand_n;
+  if (grand_n == 0) return out;
+  grand /= grand_n;
+  for (size_t f = 0; f < frames.size(); ++f) {
+    double d = 0;
+    long n = 0;
+    for (const CellLum& c : frames[f]) {
+      const auto it = std::lower_bound(mean.begin(), mean.end(), c.cell,
+                                       [](const CellMean& m, int64_t key) { return m.cell < key; });
+      if (it == mean.end() || it->cell != c.cell || it->frames < 2) continue;
+      d += c.sum / c.count - it->sum / it->frames;
+      ++n;
+    }
+    if (n > 0) out[f] = grand + d / n;
+  }
+  return out;
+}
+
+namespace {
+
 struct Worker {
   const TemplateInput* in;
   const std::vector<int>* effectors;
+  std::vector<std::vector<std::vector<CellLum>>>* surround_cells;  // [effector][frame]: shared, disjoint frames
   std::vector<EffectorSignals>* out;     // per-frame vectors: shared, disjoint frames
   std::vector<EffectorSignals> sums;     // this worker's blob sums
   int failed = 0;
@@ -174,13 +229,20 @@ struct Worker {
     const bool have_depth = S.has_depth() && S.read_depth(f, quiet, &depth) && depth.width == W;
     // Every part's pixels (as segmented), and the hand's grown by a
     // segmenter's ragged outline: blobs are what no mask claims.
-    std::vector<uint8_t> taken(static_cast<size_t>(W) * H, 0), hand_grown;
+    // The movable parts' pixels (grown likewise) are left out of the
+    // surround: a door moving through it is not its lighting.
+    std::vector<uint8_t> taken(static_cast<size_t>(W) * H, 0), hand_grown, moving(taken.size(), 0);
     for (const PartObservation& q : in->parts) {
       seq::Image8 m;
       if (!read_mask(q.name, &m)) continue;
-      for (size_t i = 0; i < taken.size(); ++i) taken[i] |= m.pixels[i] ? 1 : 0;
+      const bool movable = !q.joint_type.empty() && q.joint_type != "fixed";
+      for (size_t i = 0; i < taken.size(); ++i) {
+        taken[i] |= m.pixels[i] ? 1 : 0;
+        if (movable) moving[i] |= m.pixels[i] ? 1 : 0;
+      }
     }
     if (have_hand) hand_grown = dilate(hand.pixels, W, H, kMaskGrow);
+    moving = dilate(moving, W, H, kMaskGrow);
     const Eigen::Isometry3d obj_to_cam = in->camera_to_world[f].inverse() * in->object_to_world;
     const Eigen::Isometry3d cam_to_obj = obj_to_cam.inverse();
     const seq::Intrinsics& K = M.intrinsics;
@@ -314,17 +376,18 @@ struct Worker {
       // two pixels or more across, and the scan is the stage's main cost.
       const int stride = W >= 600 ? 2 : 1;
       const double px_count = px_area * stride * stride;
-      double surround_lum = 0;
       o.droplets[f] = o.motes[f] = 0;  // observed: the claims below add to them
-      long surround_n = 0;
+      std::vector<std::pair<int64_t, double>> lit;  // the surround's pixels: static surface points in the space
       for (int y = y0; y <= y1; y += stride)
         for (int x = x0; x <= x1; x += stride) {
           const size_t i = static_cast<size_t>(y) * W + x;
           if (!hand_grown.empty() && hand_grown[i]) continue;
-          {
-            const uint8_t* c = &rgb.pixels[3 * i];
-            surround_lum += 0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2];
-            ++surround_n;
+          if (!moving[i]) {
+            const Eigen::Vector3d p = point(x, y);
+            if (std::isfinite(p.x()) && roi.contains(p)) {
+              const uint8_t* c = &rgb.pixels[3 * i];
+              lit.push_back({cell_of(p), (0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2]) / 255.0});
+            }
           }
           if (taken[i]) continue;
           // A small blob in colour: unlike both neighbours across it, which
@@ -361,7 +424,13 @@ struct Worker {
                                         : through(around, d, bg, &at) || through(below, d, bg, &at);
           if (inside) claims.push_back({i, e, kind, px_count, at, ray_distance(eye, d, bg, roi, eb)});
         }
-      if (surround_n > 0) o.surround[f] = surround_lum / surround_n / 255.0;
+      std::sort(lit.begin(), lit.end());
+      std::vector<CellLum>& cells = (*surround_cells)[e][f];
+      for (const auto& [cell, lum] : lit) {
+        if (cells.empty() || cells.back().cell != cell) cells.push_back({cell, 0.0, 0});
+        cells.back().sum += lum;
+        ++cells.back().count;
+      }
     }
     settle_claims(f, &claims);
   }
@@ -406,9 +475,11 @@ std::vector<EffectorSignals> measure_effectors(const TemplateInput& input, const
   for (EffectorSignals& s : out) s.glow = s.heat = s.droplets = s.motes = s.surround = std::vector<double>(N, kNaN);
   const int T = std::clamp(threads, 1, 16);
   std::vector<Worker> workers(T);
+  std::vector<std::vector<std::vector<CellLum>>> surround_cells(effectors.size(), std::vector<std::vector<CellLum>>(N));
   for (Worker& w : workers) {
     w.in = &input;
     w.effectors = &effectors;
+    w.surround_cells = &surround_cells;
     w.out = &out;
     w.sums.resize(effectors.size());
   }
@@ -431,6 +502,7 @@ std::vector<EffectorSignals> measure_effectors(const TemplateInput& input, const
       out[e].droplet_top_z = std::max(out[e].droplet_top_z, s.droplet_top_z);
     }
   }
+  for (size_t e = 0; e < effectors.size(); ++e) out[e].surround = surround_from_cells(surround_cells[e]);
   for (EffectorSignals& s : out) s.frames_read = N - *frames_failed;
   return out;
 }

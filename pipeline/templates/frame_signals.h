@@ -33,6 +33,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -43,9 +44,12 @@ namespace efc::pipeline {
 
 struct EffectorSignals {
   std::vector<double> glow, heat, droplets, motes;  // per frame; NaN = not observed
-  // Mean luminance of the image around the effector (the blobs' search
-  // space, the hand left out): a lamp lights what is around it, which shows
-  // when the bulb itself is hidden (under a hood, inside a fridge).
+  // Luminance of the static surfaces around the effector (the blobs' search
+  // space; the hand and the movable parts left out), each 2 cm object-frame
+  // cell against its own mean over the frames that see it: a lamp lights
+  // what is around it, which shows when the bulb itself is hidden (under a
+  // hood, inside a fridge), while a door moving or revealing its inside
+  // changes which surfaces are seen, not how lit each is.
   std::vector<double> surround;
   int frames_seen = 0;                               // frames with effector pixels
   // Object-frame blob points (summed) and counts, for the emitter and outlet.
@@ -60,6 +64,22 @@ struct EffectorSignals {
 // diagnostics are not repeated here: the caller warns once).
 std::vector<EffectorSignals> measure_effectors(const TemplateInput& input, const std::vector<int>& effectors,
                                                int threads, int* frames_failed);
+
+// One surround cell's luminance in one frame: its pixels' sum and count.
+struct CellLum {
+  int64_t cell;
+  double sum;
+  int count;
+};
+
+// The surround signal from its cells ([frame] -> the cells it sees): per
+// frame, the mean over the cells it sees of each cell's luminance less that
+// cell's mean over all frames that see it (plus the overall mean, to keep
+// the units). A door swinging open reveals a darker inside and hides a lit
+// front: the plain mean follows the door; each surface point against itself
+// follows only its lighting. Cells seen in one frame say nothing and are
+// left out. NaN where a frame has none.
+std::vector<double> surround_from_cells(const std::vector<std::vector<CellLum>>& frames);
 
 // A moving effector's pixels change with its pose: a lid turning towards
 // the light brightens, its colour shifts with the shading. What its own

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "pipeline/templates/effect_names.h"
+#include "pipeline/templates/mapping_names.h"
 #include "pipeline/templates/frame_signals.h"
 #include "pipeline/templates/mapping_fit.h"
 #include "pipeline/templates/template_input.h"
@@ -314,6 +315,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
 
     // ---- the optional second opinion
     nlohmann::json vlm_report;
+    bool vlm_answered = false;
     if (vlm_ok) {
       VlmRequest req;
       req.endpoint = options.vlm_endpoint;
@@ -332,6 +334,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
                       "function '" + F.name + "': the vision-language model gave no usable answer (" + a.error +
                           "); the data's answer stands");
       } else {
+        vlm_answered = true;
         std::vector<double> none(4, 0.25);
         combine_with_vlm(a, &effect_post, &none);
         for (Hypothesis& h : H) combine_with_vlm(a, nullptr, &h.mapping_post);
@@ -357,12 +360,6 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     // The guess moved by the second opinion, or taken by an earlier function
     // on the same effector: not the names' nor the default's.
     if (!evident && ek != guess) guess_from = "other";
-    if (!evident)
-      diags.warning("E1062", seq_file, 0, 0, where,
-                    "function '" + F.name + "': no signal at the effector '" + F.effector +
-                        "' follows the receptor; the effect is a guess (" + kEffects[ek] +
-                        (guess_from == "names" ? ", from the names" : "") + ")",
-                    "a longer recording, or the effector kept in view, shows the effect");
     Hypothesis& h = H[ek];
     int mk = static_cast<int>(std::max_element(h.mapping_post.begin(), h.mapping_post.end()) - h.mapping_post.begin());
     if (!h.has_signal || h.fit.best_index < 0) {
@@ -371,8 +368,23 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
       for (int k = 0; k < 5; ++k)
         if (H[k].fit.best_index >= 0) mk = kTypeOf[H[k].fit.best_index];
     }
+    // Nothing responds: the fit is a fit to noise, and the receptor's name
+    // (mapping_names.h) says more where it names a mapping; the spec's
+    // defaults for that mapping then, not parameters fitted to noise. A
+    // second opinion that answered has already moved the posterior.
+    std::string mapping_from = evident ? "data" : "noise";
+    const int named_mapping = evident || vlm_answered ? -1 : mapping_named(F.receptor);
+    if (named_mapping >= 0) mk = named_mapping, mapping_from = "names";
+    if (vlm_answered && !evident) mapping_from = "vlm";
+    if (!evident)
+      diags.warning("E1062", seq_file, 0, 0, where,
+                    "function '" + F.name + "': no signal at the effector '" + F.effector +
+                        "' follows the receptor; the effect is a guess (" + kEffects[ek] +
+                        (guess_from == "names" ? ", from the names" : "") + "), and so is the mapping (" +
+                        kMappings[mk] + (mapping_from == "names" ? ", from the receptor's name" : "") + ")",
+                    "a longer recording, or the effector kept in view, shows the effect");
     MappingModel model = default_model(mk, r_lo, r_hi);
-    if (h.fit.best_index >= 0) {
+    if (h.fit.best_index >= 0 && named_mapping < 0) {
       // The best variant of that type (binary: latching or not).
       int pick = -1;
       for (int i = 0; i < 5; ++i)
@@ -445,6 +457,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
                 {"mapping", kMappings[mk]},
                 {"evident", evident},
                 {"guess_from", guess_from},
+                {"mapping_from", mapping_from},
                 {"min_evidence", kMinEvidence},
                 {"hypotheses", hyps},
                 {"chosen_model", to_json(model)},
