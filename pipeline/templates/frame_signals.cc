@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 #include <thread>
+#include <unordered_map>
 
 #include <Eigen/Dense>
 
@@ -377,7 +378,11 @@ struct Worker {
       const int stride = W >= 600 ? 2 : 1;
       const double px_count = px_area * stride * stride;
       o.droplets[f] = o.motes[f] = 0;  // observed: the claims below add to them
-      std::vector<std::pair<int64_t, double>> lit;  // the surround's pixels: static surface points in the space
+      // The surround's pixels (static surface points in the space), summed
+      // per cell; neighbouring pixels mostly share one.
+      std::vector<CellLum> lit;
+      std::unordered_map<int64_t, size_t> lit_at;
+      size_t last = 0;
       for (int y = y0; y <= y1; y += stride)
         for (int x = x0; x <= x1; x += stride) {
           const size_t i = static_cast<size_t>(y) * W + x;
@@ -386,7 +391,14 @@ struct Worker {
             const Eigen::Vector3d p = point(x, y);
             if (std::isfinite(p.x()) && roi.contains(p)) {
               const uint8_t* c = &rgb.pixels[3 * i];
-              lit.push_back({cell_of(p), (0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2]) / 255.0});
+              const int64_t cell = cell_of(p);
+              if (lit.empty() || lit[last].cell != cell) {
+                const auto [it, fresh] = lit_at.emplace(cell, lit.size());
+                if (fresh) lit.push_back({cell, 0.0, 0});
+                last = it->second;
+              }
+              lit[last].sum += (0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2]) / 255.0;
+              ++lit[last].count;
             }
           }
           if (taken[i]) continue;
@@ -424,13 +436,8 @@ struct Worker {
                                         : through(around, d, bg, &at) || through(below, d, bg, &at);
           if (inside) claims.push_back({i, e, kind, px_count, at, ray_distance(eye, d, bg, roi, eb)});
         }
-      std::sort(lit.begin(), lit.end());
-      std::vector<CellLum>& cells = (*surround_cells)[e][f];
-      for (const auto& [cell, lum] : lit) {
-        if (cells.empty() || cells.back().cell != cell) cells.push_back({cell, 0.0, 0});
-        cells.back().sum += lum;
-        ++cells.back().count;
-      }
+      std::sort(lit.begin(), lit.end(), [](const CellLum& a, const CellLum& b) { return a.cell < b.cell; });
+      (*surround_cells)[e][f] = std::move(lit);
     }
     settle_claims(f, &claims);
   }
