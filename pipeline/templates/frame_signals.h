@@ -49,7 +49,8 @@ struct EffectorSignals {
   // cell against its own mean over the frames that see it: a lamp lights
   // what is around it, which shows when the bulb itself is hidden (under a
   // hood, inside a fridge), while a door moving or revealing its inside
-  // changes which surfaces are seen, not how lit each is.
+  // changes which surfaces are seen, not how lit each is. Read where the
+  // depth places a pixel (NaN in frames without depth).
   std::vector<double> surround;
   int frames_seen = 0;                               // frames with effector pixels
   // Object-frame blob points (summed) and counts, for the emitter and outlet.

@@ -7,9 +7,9 @@
 #include <limits>
 
 #include "pipeline/templates/effect_names.h"
-#include "pipeline/templates/mapping_names.h"
 #include "pipeline/templates/frame_signals.h"
 #include "pipeline/templates/mapping_fit.h"
+#include "pipeline/templates/mapping_names.h"
 #include "pipeline/templates/template_input.h"
 #include "pipeline/templates/template_json.h"
 #include "pipeline/templates/vlm_client.h"
