@@ -36,8 +36,6 @@ const std::map<std::string, int>& lexicon() {
   return words;
 }
 
-}  // namespace
-
 std::vector<std::string> name_words(const std::string& name) {
   std::vector<std::string> out;
   std::string cur;
@@ -57,32 +55,28 @@ std::vector<std::string> name_words(const std::string& name) {
   return out;
 }
 
-namespace {
-
-int word_effect(const std::string& word) {
-  const auto& w = lexicon();
-  auto it = w.find(word);
-  if (it != w.end()) return it->second;
+int word_value(const std::map<std::string, int>& words, const std::string& word) {
+  auto it = words.find(word);
+  if (it != words.end()) return it->second;
   if (word.size() > 3 && word.back() == 's') {
-    it = w.find(word.substr(0, word.size() - 1));
-    if (it != w.end()) return it->second;
+    it = words.find(word.substr(0, word.size() - 1));
+    if (it != words.end()) return it->second;
   }
   return -1;
 }
 
-// The last word of `name` that names an effect.
-int last_named(const std::string& name) {
+}  // namespace
+
+int last_named_in(const std::map<std::string, int>& words, const std::string& name) {
   int found = -1;
   for (const std::string& word : name_words(name))
-    if (const int e = word_effect(word); e >= 0) found = e;
+    if (const int v = word_value(words, word); v >= 0) found = v;
   return found;
 }
 
-}  // namespace
-
 int effect_named(const std::string& effector, const std::string& function) {
-  const int e = last_named(effector);
-  return e >= 0 ? e : last_named(function);
+  const int e = last_named_in(lexicon(), effector);
+  return e >= 0 ? e : last_named_in(lexicon(), function);
 }
 
 }  // namespace efc::pipeline

@@ -9,8 +9,8 @@
 // names one effect or none ("head", "panel", "speed" name none).
 #pragma once
 
+#include <map>
 #include <string>
-#include <vector>
 
 namespace efc::pipeline {
 
@@ -24,8 +24,9 @@ namespace efc::pipeline {
 // word itself is not listed.
 int effect_named(const std::string& effector, const std::string& function);
 
-// A name's words, as effect_named splits them: at anything but letters and
-// digits and at lower-to-upper case changes, in lower case.
-std::vector<std::string> name_words(const std::string& name);
+// The value in `words` of the last word of `name` listed there, or -1:
+// words as effect_named splits and compares them (the lexicon's lookup,
+// shared with mapping_named).
+int last_named_in(const std::map<std::string, int>& words, const std::string& name);
 
 }  // namespace efc::pipeline

@@ -28,24 +28,8 @@ const std::map<std::string, int>& lexicon() {
   return words;
 }
 
-int word_mapping(const std::string& word) {
-  const auto& w = lexicon();
-  auto it = w.find(word);
-  if (it != w.end()) return it->second;
-  if (word.size() > 3 && word.back() == 's') {
-    it = w.find(word.substr(0, word.size() - 1));
-    if (it != w.end()) return it->second;
-  }
-  return -1;
-}
-
 }  // namespace
 
-int mapping_named(const std::string& receptor) {
-  int found = -1;
-  for (const std::string& word : name_words(receptor))
-    if (const int m = word_mapping(word); m >= 0) found = m;
-  return found;
-}
+int mapping_named(const std::string& receptor) { return last_named_in(lexicon(), receptor); }
 
 }  // namespace efc::pipeline

@@ -16,7 +16,7 @@ namespace efc::pipeline {
 // The mapping (0 binary, 1 step, 2 linear, 3 cumulative, as templates.cc
 // orders them) the receptor's name gives, by its last word that names one
 // ("fan_slider" is a slider, "flow_up" an up button, "power_switch" a
-// switch), or -1. Words as name_words (effect_names.h) splits them, a
+// switch), or -1. Words as effect_named (effect_names.h) splits them, a
 // plural's "s" dropped where the word itself is not listed.
 int mapping_named(const std::string& receptor);
 
