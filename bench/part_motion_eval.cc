@@ -46,6 +46,7 @@
 #include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/hand_contacts.h"
 #include "pipeline/infer/joint_estimate.h"
+#include "pipeline/infer/joint_names.h"
 #include "pipeline/infer/observations.h"
 #include "pipeline/infer/part_tracking.h"
 #include "bench/truth_sequences.h"
@@ -231,7 +232,7 @@ int main(int argc, char** argv) {
       const std::string true_type = joints[name].type;
       const efc::pipeline::PartTrack* grip = grips[p].get();
       const efc::pipeline::JointEstimate est =
-          efc::pipeline::estimate_joint(track, hand_points[p], operated(p), grip);
+          efc::pipeline::estimate_joint(track, hand_points[p], operated(p), grip, efc::pipeline::joint_named(name));
       // The true axis in the world frame and the grip's centre: the grip's
       // twist about that axis and its slide along it, per frame (--frames).
       const Eigen::Vector3d true_axis = (object_to_world.linear() * joints[name].axis).normalized();

@@ -490,9 +490,11 @@ const std::vector<CodeInfo>& all_codes() {
        "efc infer types each part's joint by what its own track and the hand's contacts\n"
        "show. The hand held this part (a receptor), yet neither shows it moving: a button\n"
        "pressed under the finger, a knob turned by its centre. The recording is of\n"
-       "someone operating it, so it takes the likelier moving joint (revolute or\n"
-       "prismatic, by BIC) with low confidence (report.json: assumed_moving). A part no\n"
-       "hand held stays fixed when nothing shows it moving.\n"
+       "someone operating it, so it takes a moving joint with low confidence\n"
+       "(report.json: assumed_moving): the one its name names where it names one (a\n"
+       "button, a key, a slider slides; a knob, a dial, a lever, a rocker turns;\n"
+       "report.json: type_from_name), else the likelier of revolute and prismatic by\n"
+       "BIC. A part no hand held stays fixed when nothing shows it moving.\n"
        "Fix: film the part from where its motion shows, not hidden by the hand."},
       {"E1010", "the spec cannot be filmed by efc synth",
        "efc synth writes one mask folder per part and one for the hand (masks/hand/),\n"

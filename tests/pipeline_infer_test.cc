@@ -15,6 +15,7 @@
 #include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/hand_contacts.h"
 #include "pipeline/infer/joint_estimate.h"
+#include "pipeline/infer/joint_names.h"
 #include "pipeline/infer/spec_assembly.h"
 
 namespace {
@@ -308,6 +309,57 @@ TEST(PipelineInfer, AReceptorsPressShowsPastItsSlip) {
   EXPECT_FALSE(turned.press_past_slip);
 }
 
+// A plain round button 6 cm across (rim and front, axis z, no ridge):
+// nothing on it shows a turn about its axis.
+Cloud plain_button() {
+  Cloud c = ring(0.03, 0.01);
+  for (int i = 1; i <= 5; ++i)
+    for (int k = 0; k < 36; ++k) {
+      const double a = 2 * kPi * k / 36, r = 0.03 * i / 5;
+      c.points.push_back(Vector3d(r * std::cos(a), r * std::sin(a), 0.01));
+      c.normals.push_back(Vector3d::UnitZ());
+    }
+  return c;
+}
+
+TEST(PipelineInfer, APressShowsPastATurnItsShapeCannotShowAtAll) {
+  // A plain round button the hand operates, whose registration spins it by
+  // whole radians about its axis: its shape shows that turn nowhere
+  // (visibility about 0), so its own track shows no motion at all, and its
+  // centre, held 6 mm in along its axis twice, still shows the press. A
+  // lever's round handle (15 cm long, 2 cm thick, round about its length)
+  // whose centre is held along its length the same way is no button: it
+  // faces across that axis, not along it.
+  const int frames = 150;
+  const Vector3d axis = Vector3d::UnitZ();
+  auto pressed = [&](const Cloud& model, unsigned seed) {
+    PartTrack t = turning(model, axis, Vector3d::Zero(), 0.0, frames, 0.0, seed);
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> g(0, 1);
+    double slip = 0;
+    for (int f = 0; f < frames; ++f) {
+      slip += 0.6 * g(rng);
+      const bool in = (f >= 40 && f < 60) || (f >= 95 && f < 115);
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.linear() = Eigen::AngleAxisd(slip, axis).toRotationMatrix();
+      T.translation() = Vector3d(0.002 * g(rng), 0.002 * g(rng), 0.0005 * g(rng)) - (in ? 0.006 : 0.0) * axis;
+      t.motion[f] = T;
+    }
+    with_information(&t);
+    return t;
+  };
+  ASSERT_LT(visibility(plain_button(), "revolute", axis, Vector3d::Zero()), kMinVisibility);
+  const JointEstimate button = estimate_joint(pressed(plain_button(), 81), no_hand(frames), true);
+  EXPECT_EQ(button.from_part.type, "revolute");
+  EXPECT_TRUE(button.press_past_slip);
+  EXPECT_EQ(button.type, "prismatic");
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(button.axis.dot(axis)))), 0.1);
+  EXPECT_NEAR(button.range_hi - button.range_lo, 0.006, 0.002);
+  const JointEstimate handle = estimate_joint(pressed(ring(0.01, 0.15), 82), no_hand(frames), true);
+  EXPECT_FALSE(handle.press_past_slip);
+  EXPECT_NE(handle.type, "prismatic");
+}
+
 // A round shade (a ring 10 cm across, 8 cm tall, axis z) whose registration
 // slips round its own axis by a random walk of whole radians, and that
 // tilts (0.25 rad) about a pivot beside it (along y, 11 cm from its centre)
@@ -502,6 +554,10 @@ TEST(PipelineInfer, TheHandGivesTheJointTheShapeCannotShow) {
   EXPECT_EQ(j.source, "hand");
   EXPECT_LT(std::acos(std::min(1.0, std::abs(j.axis.dot(Vector3d::UnitZ())))), 0.15);
   EXPECT_NEAR(j.range_hi - j.range_lo, 1.5, 0.3);
+  // A name never overrules a motion that shows.
+  const JointEstimate named = estimate_joint(t, hand, true, nullptr, "prismatic");
+  EXPECT_EQ(named.type, "revolute");
+  EXPECT_FALSE(named.type_from_name);
   // Without the hand, nothing shows the turn: fixed, not a guess.
   EXPECT_EQ(estimate_joint(t, no_hand(frames)).type, "fixed");
 }
@@ -521,10 +577,35 @@ TEST(PipelineInfer, AReceptorTheHandHeldMovedEvenWhenNothingShowsIt) {
   EXPECT_NE(held.type, "fixed");
   EXPECT_LE(held.confidence, 0.5);
   EXPECT_EQ(static_cast<int>(held.q.size()), frames);
-  // Nobody held it: fixed, not a guess.
-  const JointEstimate alone = estimate_joint(t, no_hand(frames));
+  EXPECT_FALSE(held.type_from_name);
+  // Its name, where it names a joint, types it instead of two fits to
+  // noise, with the same low confidence.
+  for (const std::string named : {"prismatic", "revolute"}) {
+    const JointEstimate by_name = estimate_joint(t, hand, true, nullptr, named);
+    EXPECT_TRUE(by_name.assumed_moving);
+    EXPECT_TRUE(by_name.type_from_name);
+    // (a turn wider than a whole one comes out continuous)
+    EXPECT_EQ(by_name.type == "prismatic" ? "prismatic" : by_name.type == "fixed" ? "fixed" : "revolute", named);
+    EXPECT_LE(by_name.confidence, 0.5);
+  }
+  // Nobody held it: fixed, not a guess, whatever its name.
+  const JointEstimate alone = estimate_joint(t, no_hand(frames), true, nullptr, "prismatic");
   EXPECT_EQ(alone.type, "fixed");
   EXPECT_FALSE(alone.assumed_moving);
+  EXPECT_FALSE(alone.type_from_name);
+}
+
+TEST(PipelineInfer, APartsNameNamesItsJoint) {
+  EXPECT_EQ(joint_named("button"), "prismatic");
+  EXPECT_EQ(joint_named("speed_button"), "prismatic");
+  EXPECT_EQ(joint_named("fanSlider"), "prismatic");
+  EXPECT_EQ(joint_named("knob_left"), "revolute");
+  EXPECT_EQ(joint_named("Rocker"), "revolute");
+  EXPECT_EQ(joint_named("button_knob"), "revolute");  // the last word that names one
+  EXPECT_EQ(joint_named("knobs"), "revolute");        // a plural's s
+  EXPECT_EQ(joint_named("power_switch"), "");          // a rocker, a toggle or a slide
+  EXPECT_EQ(joint_named("handle"), "");
+  EXPECT_EQ(joint_named(""), "");
 }
 
 // A round button or knob's track (the ridged button, axis z) whose

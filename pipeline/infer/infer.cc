@@ -12,6 +12,7 @@
 #include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/hand_contacts.h"
 #include "pipeline/infer/joint_estimate.h"
+#include "pipeline/infer/joint_names.h"
 #include "pipeline/infer/part_tracking.h"
 #include "pipeline/infer/reconstruction.h"
 #include "pipeline/infer/spec_assembly.h"
@@ -65,6 +66,7 @@ ojson joint_report(const JointEstimate& j) {
   r["source"] = j.source;
   r["confidence"] = j.confidence;
   if (j.assumed_moving) r["assumed_moving"] = true;
+  if (j.type_from_name) r["type_from_name"] = true;
   if (j.slide_over_turn) r["slide_over_turn"] = true;
   if (j.turn_taken_for_slip) r["turn_taken_for_slip"] = true;
   if (j.swing_past_slip) r["swing_past_slip"] = true;
@@ -285,11 +287,12 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   std::vector<JointEstimate> joints(obs.parts.size());
   for (int p : moving_parts) {
     if (!tracks[p]) continue;
-    joints[p] = estimate_joint(*tracks[p], hand_points[p], operated(p), grips[p].get());
+    joints[p] = estimate_joint(*tracks[p], hand_points[p], operated(p), grips[p].get(), joint_named(obs.parts[p].name));
     if (joints[p].assumed_moving)
       diags.warning("E1059", meta_file, 0, 0, "/parts/" + obs.parts[p].name,
                     "part '" + obs.parts[p].name + "': the hand held it, but neither its own track nor the hand's shows it moving; it is taken as " +
-                        joints[p].type + " (the likelier moving joint), with low confidence",
+                        joints[p].type + (joints[p].type_from_name ? " (as its name says)" : " (the likelier moving joint)") +
+                        ", with low confidence",
                     "film the part from where its motion shows, not hidden by the hand");
   }
   stages.push_back(stage("articulation", contacts_seconds + since(t0)));

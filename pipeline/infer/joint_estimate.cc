@@ -470,6 +470,14 @@ bool best_shown_slide(const Cloud& model, Eigen::Vector3d* axis) {
   return true;
 }
 
+// Whether a slide along a part's symmetry axis `axis` shows on its shape
+// as well as a slip would not (kSlipVisibility): it does on a round
+// button's or a knob's face, and not on a round rod's handle, round about
+// its length and facing across it.
+bool presses_along_its_axis(const Cloud& model, const Eigen::Vector3d& axis) {
+  return visibility(model, "prismatic", axis, centroid(model)) >= kSlipVisibility;
+}
+
 // The track with each sample's information kept only about its position
 // along `P`'s directions (a projector): a slide elsewhere, or a turn,
 // costs nothing (a slide's axis is what is asked; the registration's
@@ -534,7 +542,7 @@ Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
 }
 
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points, bool operated,
-                             const PartTrack* grip) {
+                             const PartTrack* grip, const std::string& named) {
   JointEstimate j;
   const int n = static_cast<int>(track.motion.size());
   // The part's own track: the pose of its model's centroid per tracked
@@ -663,8 +671,22 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // one side shows a press well enough, but is tens of degrees off.
   const bool hand_turns = (j.has_grip_track && j.from_grip.type == "revolute" && j.grip_visibility >= kSlipVisibility) ||
                           (j.has_hand_track && j.from_hand.type == "revolute");
+  // The rule reads any turn of the part about itself that its shape does
+  // not show plainly (less than a generic turn, kPlainTurnVisibility), and
+  // a track too faint to show its turn at all (below kMinVisibility): a
+  // round button of a few hundred points tilts by tens of degrees from
+  // frame to frame whatever it does, and its press still shows on its
+  // centre (s0007's and s0041's buttons, visibility 0.09 and 0.69). A lever
+  // whose hinge its shape shows as plainly as any turn stays a lever
+  // (s0036's under degraded masks, 3.6). A press along the symmetry axis
+  // must show on the shape too (presses_along_its_axis()): a button's or a
+  // knob's face shows it, a rod's round handle does not.
+  const bool part_turns_unshown =
+      j.has_part_track && part_reliable && j.from_part.type == "revolute" &&
+      turns_about_itself(track.model, j.from_part.axis, j.from_part.origin) && j.part_visibility < kPlainTurnVisibility;
   Eigen::Vector3d spin_axis = Eigen::Vector3d::Zero();
-  if (operated && part_shows_a_slip && !hand_turns && near_symmetry_axis(track.model, &symmetry)) {
+  if (operated && part_turns_unshown && !hand_turns && near_symmetry_axis(track.model, &symmetry) &&
+      presses_along_its_axis(track.model, symmetry)) {
     std::vector<std::vector<int>> press_frames;
     const Track untwisted = part_samples(track, model_centre, kPartBin, &press_frames, true, &symmetry);
     std::vector<double> along;
@@ -724,9 +746,17 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // other moving one halved as its confidence. Its geometry comes from the
   // track that favours that model most over fixed. A part no hand held
   // still comes out fixed when nothing shows it moving.
+  // Where its name says which (a button slides, a knob turns), the name
+  // types it: the BICs of two fits to noise tell nothing (a small button's
+  // registration tilts fit a turn better than its hidden press fits a
+  // slide).
   bool geometry_from_part = part_decides;
   if (type == "fixed" && j.has_hand_track && std::isfinite(std::min(j.bic_revolute, j.bic_prismatic))) {
     type = j.bic_revolute <= j.bic_prismatic ? "revolute" : "prismatic";
+    if (named == "revolute" || named == "prismatic") {
+      j.type_from_name = true;
+      type = named;
+    }
     j.assumed_moving = true;
     const double other = type == "revolute" ? j.bic_prismatic : j.bic_revolute;
     const double mine = type == "revolute" ? j.bic_revolute : j.bic_prismatic;

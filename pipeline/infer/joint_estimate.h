@@ -52,6 +52,9 @@ struct JointEstimate {
   // A receptor the hand held whose motion neither track shows: moving by
   // assumption (the likelier moving model), not by evidence.
   bool assumed_moving = false;
+  // Moving by assumption, and typed by the part's name (joint_names.h)
+  // rather than by the fused BIC, which two fits to noise decide.
+  bool type_from_name = false;
   // A part that turns about an axis through itself, typed prismatic: its
   // hinge fit explained its poses better with a slide along the same axis
   // (Articulation::slide_bic), so the turn is taken for the registration
@@ -67,7 +70,7 @@ struct JointEstimate {
   // shade's spin), whatever the slip made of the whole track.
   bool swing_past_slip = false;
   // A receptor whose track turns about an axis through itself that its
-  // shape barely shows, and whose centre, its poses less their twist about
+  // shape does not show plainly, and whose centre, its poses less their twist about
   // its symmetry axis, is held one way along that axis for a while and
   // never as far the other way: the press (a round button's) decides,
   // along the turn's axis, the turn taken for the registration's slip.
@@ -101,6 +104,9 @@ constexpr double kMinVisibility = 0.1;
 // registration can slip into: a part whose track turns so about an axis
 // through itself, and also slides along it, is taken to slide.
 constexpr double kSlipVisibility = 0.5;
+// A turn at least this visible (as visible as a generic turn) is shown
+// plainly by the part's shape: no registration slips into it.
+constexpr double kPlainTurnVisibility = 1.0;
 
 // Whether a joint axis passes through the part (a knob's, a button's) rather
 // than beside it (a lever's, a door's hinge): the part's centroid is nearer
@@ -147,7 +153,10 @@ bool near_symmetry_axis(const Cloud& model, Eigen::Vector3d* axis);
 // its shape does not show, or whose turn is one its registration can slip
 // into (a round knob's, a round button's), since a hand holding a part
 // moves with it and its fingers show a twist or a press the part hides.
+// `named`: the joint the part's name speaks of (joint_named(): "prismatic",
+// "revolute" or ""); it types a part moving by assumption only
+// (JointEstimate::type_from_name), never one whose motion shows.
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points,
-                             bool operated = true, const PartTrack* grip = nullptr);
+                             bool operated = true, const PartTrack* grip = nullptr, const std::string& named = "");
 
 }  // namespace efc::pipeline

@@ -1,0 +1,37 @@
+#include "pipeline/infer/joint_names.h"
+
+#include <map>
+
+#include "pipeline/templates/effect_names.h"
+
+namespace efc::pipeline {
+namespace {
+
+// Words that name one joint each (0 a slide, 1 a turn). Left out on
+// purpose: "switch" (rocker, toggle or slide), "handle" (a lever's or a
+// drawer's), "valve" and "tap" (turned or pulled).
+const std::map<std::string, int>& lexicon() {
+  static const std::map<std::string, int> words = [] {
+    std::map<std::string, int> w;
+    for (const char* s : {"button", "pushbutton", "key", "plunger", "piston", "slider", "slide", "fader", "drawer",
+                          "tray", "plus", "minus"})
+      w[s] = 0;
+    for (const char* s : {"knob", "dial", "crank", "wheel", "handwheel", "thumbwheel", "lever", "rocker", "toggle",
+                          "paddle", "pedal", "door", "lid", "flap", "hatch"})
+      w[s] = 1;
+    return w;
+  }();
+  return words;
+}
+
+}  // namespace
+
+std::string joint_named(const std::string& part) {
+  switch (last_named_in(lexicon(), part)) {
+    case 0: return "prismatic";
+    case 1: return "revolute";
+    default: return "";
+  }
+}
+
+}  // namespace efc::pipeline

@@ -1,0 +1,22 @@
+// The joint a receptor's name speaks of, for when its motion does not
+// show. A receptor the hand held whose motion neither its own track nor the
+// hand's shows (a button pressed under the finger, a knob turned by its
+// centre) was operated all the same, and its joint was a coin toss between
+// two fits to noise (estimate_joint(): JointEstimate::assumed_moving). What
+// the part is still says how it moves, as the paper's vision-language model
+// would read it: a button, a key or a slider slides; a knob, a dial, a
+// lever or a rocker turns. A "switch" names none: it comes as a rocker, a
+// toggle and a slide.
+#pragma once
+
+#include <string>
+
+namespace efc::pipeline {
+
+// "prismatic" or "revolute", by the last word of the part's name that
+// names one ("speed_button" is a button, "knob_left" a knob), or "" where
+// none does. Words as effect_named (pipeline/templates/effect_names.h)
+// splits and compares them.
+std::string joint_named(const std::string& part);
+
+}  // namespace efc::pipeline
