@@ -123,12 +123,14 @@ void with_information(PartTrack* t) {
 }
 
 // A round button 6 cm across on a face (normal z): its rim, its front and
-// a low ridge across the front, which is all that shows a turn.
-Cloud ridged_button() {
+// a low ridge across the front, which is all that shows a turn. The front
+// sampled on `front_rings` circles: 5 show it about as much as the rim
+// and its ridge, 8 more, as a camera in front of the button sees it.
+Cloud ridged_button(int front_rings = 5) {
   Cloud c = ring(0.03, 0.01);
-  for (int i = 1; i <= 5; ++i)
+  for (int i = 1; i <= front_rings; ++i)
     for (int k = 0; k < 36; ++k) {
-      const double a = 2 * kPi * k / 36, r = 0.03 * i / 5;
+      const double a = 2 * kPi * k / 36, r = 0.03 * i / front_rings;
       c.points.push_back(Vector3d(r * std::cos(a), r * std::sin(a), 0.01));
       c.normals.push_back(Vector3d::UnitZ());
     }
@@ -147,7 +149,7 @@ TEST(PipelineInfer, AButtonsRegistrationThatSlipsRoundItsAxisStillShowsThePress)
   // turn, so the slip is not taken for a knob's turn.
   const int frames = 150;
   const Vector3d normal = Vector3d::UnitZ();
-  const Cloud model = ridged_button();
+  const Cloud model = ridged_button(8);
   auto button = [&](bool pressed, unsigned seed) {
     PartTrack t = turning(model, normal, Vector3d::Zero(), 0.0, frames, 0.0003, seed);
     std::mt19937 rng(seed);
@@ -267,7 +269,7 @@ TEST(PipelineInfer, AReceptorsPressShowsPastItsSlip) {
   const int frames = 150;
   const Vector3d normal = Vector3d::UnitZ();
   auto round_part = [&](bool pressed, bool jumps, unsigned seed) {
-    PartTrack t = turning(ridged_button(), normal, Vector3d::Zero(), 0.0, frames, 0.0, seed);
+    PartTrack t = turning(ridged_button(8), normal, Vector3d::Zero(), 0.0, frames, 0.0, seed);
     std::mt19937 rng(seed);
     std::normal_distribution<double> g(0, 1);
     double slip = 0;
@@ -310,12 +312,13 @@ TEST(PipelineInfer, AReceptorsPressShowsPastItsSlip) {
 }
 
 // A plain round button 6 cm across (rim and front, axis z, no ridge):
-// nothing on it shows a turn about its axis.
+// nothing on it shows a turn about its axis. Its front is seen more than
+// its rim, as a camera in front of it sees it.
 Cloud plain_button() {
   Cloud c = ring(0.03, 0.01);
-  for (int i = 1; i <= 5; ++i)
+  for (int i = 1; i <= 12; ++i)
     for (int k = 0; k < 36; ++k) {
-      const double a = 2 * kPi * k / 36, r = 0.03 * i / 5;
+      const double a = 2 * kPi * k / 36, r = 0.03 * i / 12;
       c.points.push_back(Vector3d(r * std::cos(a), r * std::sin(a), 0.01));
       c.normals.push_back(Vector3d::UnitZ());
     }

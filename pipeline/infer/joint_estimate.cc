@@ -470,12 +470,16 @@ bool best_shown_slide(const Cloud& model, Eigen::Vector3d* axis) {
   return true;
 }
 
-// Whether a slide along a part's symmetry axis `axis` shows on its shape
-// as well as a slip would not (kSlipVisibility): it does on a round
-// button's or a knob's face, and not on a round rod's handle, round about
-// its length and facing across it.
+// Whether a part faces along its symmetry axis `axis` (unit): the
+// direction its normals show best (best_shown_slide(): a button's face
+// normal) is within kFacingCos of it. A round button and a knob do; a
+// lever's handle, near-symmetric about its length or its arm, faces across
+// that axis (s0049's lever, whose centre moves along its near-symmetry
+// axis as it turns: 73 degrees from its face).
+constexpr double kFacingCos = 0.9;  // within about 25 degrees
 bool presses_along_its_axis(const Cloud& model, const Eigen::Vector3d& axis) {
-  return visibility(model, "prismatic", axis, centroid(model)) >= kSlipVisibility;
+  Eigen::Vector3d face;
+  return model.has_normals() && best_shown_slide(model, &face) && std::abs(face.dot(axis)) >= kFacingCos;
 }
 
 // The track with each sample's information kept only about its position
@@ -678,9 +682,9 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // frame to frame whatever it does, and its press still shows on its
   // centre (s0007's and s0041's buttons, visibility 0.09 and 0.69). A lever
   // whose hinge its shape shows as plainly as any turn stays a lever
-  // (s0036's under degraded masks, 3.6). A press along the symmetry axis
-  // must show on the shape too (presses_along_its_axis()): a button's or a
-  // knob's face shows it, a rod's round handle does not.
+  // (s0036's under degraded masks, 3.6). The part must face along its
+  // symmetry axis too (presses_along_its_axis()), as a button's or a
+  // knob's face does and a lever's handle does not.
   const bool part_turns_unshown =
       j.has_part_track && part_reliable && j.from_part.type == "revolute" &&
       turns_about_itself(track.model, j.from_part.axis, j.from_part.origin) && j.part_visibility < kPlainTurnVisibility;
