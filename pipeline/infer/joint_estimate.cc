@@ -745,15 +745,14 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // A receptor the hand held (its contacts make a track) whose motion
   // neither track shows: a button pressed under the finger, a knob turned
   // by its centre or hidden by the hand. The recording is of someone
-  // operating it, so it moved: it takes the likelier moving model by the
-  // fused BIC, flagged as assumed, with that model's posterior against the
-  // other moving one halved as its confidence. Its geometry comes from the
-  // track that favours that model most over fixed. A part no hand held
-  // still comes out fixed when nothing shows it moving.
-  // Where its name says which (a button slides, a knob turns), the name
-  // types it: the BICs of two fits to noise tell nothing (a small button's
-  // registration tilts fit a turn better than its hidden press fits a
-  // slide).
+  // operating it, so it moved: it takes the moving model its name names
+  // where it names one (a button slides, a knob turns: the BICs of two fits
+  // to noise tell nothing, and a small button's registration tilts fit a
+  // turn better than its hidden press fits a slide), else the likelier by
+  // the fused BIC, flagged as assumed, with that model's posterior against
+  // the other moving one halved as its confidence. Its geometry comes from
+  // the track that favours that model most over fixed. A part no hand held
+  // still comes out fixed when nothing shows it moving, whatever its name.
   bool geometry_from_part = part_decides;
   if (type == "fixed" && j.has_hand_track && std::isfinite(std::min(j.bic_revolute, j.bic_prismatic))) {
     type = j.bic_revolute <= j.bic_prismatic ? "revolute" : "prismatic";

@@ -70,10 +70,11 @@ struct JointEstimate {
   // shade's spin), whatever the slip made of the whole track.
   bool swing_past_slip = false;
   // A receptor whose track turns about an axis through itself that its
-  // shape does not show plainly, and whose centre, its poses less their twist about
-  // its symmetry axis, is held one way along that axis for a while and
-  // never as far the other way: the press (a round button's) decides,
-  // along the turn's axis, the turn taken for the registration's slip.
+  // shape does not show plainly, that faces along its symmetry axis, and
+  // whose centre, its poses less their twist about that axis, is held one
+  // way along it for a while and never as far the other way: the press (a
+  // round button's) decides, along the turn's axis, the turn taken for the
+  // registration's slip.
   bool press_past_slip = false;
   // A slide the part's track found along a direction its shape barely
   // shows, taken for a slip and replaced by the slide along the direction
