@@ -258,6 +258,30 @@ TEST(PipelineInfer, ARoundShadeSeenFromOneSideSlipsRoundItselfToo) {
   EXPECT_NE(knob.type, "fixed");
 }
 
+// A round part (`model`, axis z) the hand operates, whose registration
+// spins it about its axis by a random walk of whole radians and wanders
+// 2 mm across the axis; `pressed`: held 6 mm in along the axis for frames
+// 40-59 and 95-114; `jumps`: thrown 6 mm one way or the other along the
+// axis for one frame in 23, as a knob's slipping registration is.
+PartTrack slipping_round_part(const Cloud& model, bool pressed, bool jumps, int frames, unsigned seed) {
+  const Vector3d axis = Vector3d::UnitZ();
+  PartTrack t = turning(model, axis, Vector3d::Zero(), 0.0, frames, 0.0, seed);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  double slip = 0;
+  for (int f = 0; f < frames; ++f) {
+    slip += 0.6 * g(rng);
+    const bool in = pressed && ((f >= 40 && f < 60) || (f >= 95 && f < 115));
+    const double jump = jumps && f % 23 == 11 ? (f % 2 ? 0.006 : -0.006) : 0.0;
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(slip, axis).toRotationMatrix();
+    T.translation() = Vector3d(0.002 * g(rng), 0.002 * g(rng), 0.0005 * g(rng)) + (jump - (in ? 0.006 : 0.0)) * axis;
+    t.motion[f] = T;
+  }
+  with_information(&t);
+  return t;
+}
+
 TEST(PipelineInfer, AReceptorsPressShowsPastItsSlip) {
   // A round button the hand operates: its registration spins it about its
   // axis by whole radians from frame to frame and wanders 2 mm across the
@@ -269,21 +293,7 @@ TEST(PipelineInfer, AReceptorsPressShowsPastItsSlip) {
   const int frames = 150;
   const Vector3d normal = Vector3d::UnitZ();
   auto round_part = [&](bool pressed, bool jumps, unsigned seed) {
-    PartTrack t = turning(ridged_button(8), normal, Vector3d::Zero(), 0.0, frames, 0.0, seed);
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> g(0, 1);
-    double slip = 0;
-    for (int f = 0; f < frames; ++f) {
-      slip += 0.6 * g(rng);
-      const bool in = pressed && ((f >= 40 && f < 60) || (f >= 95 && f < 115));
-      const double jump = jumps && f % 23 == 11 ? (f % 2 ? 0.006 : -0.006) : 0.0;
-      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-      T.linear() = Eigen::AngleAxisd(slip, normal).toRotationMatrix();
-      T.translation() = Vector3d(0.002 * g(rng), 0.002 * g(rng), 0.0005 * g(rng)) + (jump - (in ? 0.006 : 0.0)) * normal;
-      t.motion[f] = T;
-    }
-    with_information(&t);
-    return t;
+    return slipping_round_part(ridged_button(8), pressed, jumps, frames, seed);
   };
   const JointEstimate button = estimate_joint(round_part(true, false, 71), no_hand(frames), true);
   EXPECT_TRUE(button.press_past_slip);
@@ -336,20 +346,7 @@ TEST(PipelineInfer, APressShowsPastATurnItsShapeCannotShowAtAll) {
   const int frames = 150;
   const Vector3d axis = Vector3d::UnitZ();
   auto pressed = [&](const Cloud& model, unsigned seed) {
-    PartTrack t = turning(model, axis, Vector3d::Zero(), 0.0, frames, 0.0, seed);
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> g(0, 1);
-    double slip = 0;
-    for (int f = 0; f < frames; ++f) {
-      slip += 0.6 * g(rng);
-      const bool in = (f >= 40 && f < 60) || (f >= 95 && f < 115);
-      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-      T.linear() = Eigen::AngleAxisd(slip, axis).toRotationMatrix();
-      T.translation() = Vector3d(0.002 * g(rng), 0.002 * g(rng), 0.0005 * g(rng)) - (in ? 0.006 : 0.0) * axis;
-      t.motion[f] = T;
-    }
-    with_information(&t);
-    return t;
+    return slipping_round_part(model, true, false, frames, seed);
   };
   ASSERT_LT(visibility(plain_button(), "revolute", axis, Vector3d::Zero()), kMinVisibility);
   const JointEstimate button = estimate_joint(pressed(plain_button(), 81), no_hand(frames), true);
