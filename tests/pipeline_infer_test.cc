@@ -319,6 +319,37 @@ TEST(PipelineInfer, AReceptorsPressShowsPastItsSlip) {
   const JointEstimate turned = estimate_joint(round_part(true, false, 71), turning_hand, true);
   EXPECT_EQ(turned.from_hand.type, "revolute");
   EXPECT_FALSE(turned.press_past_slip);
+  EXPECT_FALSE(estimate_joint(round_part(true, false, 71), turning_hand, true, nullptr, "prismatic").press_past_slip);
+}
+
+TEST(PipelineInfer, AButtonWhosePressDoesNotShowIsPressedByItsName) {
+  // The slipping round part with no press held along its axis (a press of
+  // two millimetres is lost so in the noise): its track shows it moved, by
+  // a turn its shape cannot show plainly, and where its name says a slide
+  // it is pressed along the turn's axis, typed by its name, with a low
+  // confidence. Named a knob, or nothing, it is not.
+  const int frames = 150;
+  for (const bool jumps : {false, true}) {
+    const PartTrack t = slipping_round_part(ridged_button(8), false, jumps, frames, 72);
+    const JointEstimate button = estimate_joint(t, no_hand(frames), true, nullptr, "prismatic");
+    EXPECT_TRUE(button.press_past_slip) << jumps;
+    EXPECT_TRUE(button.type_from_name) << jumps;
+    EXPECT_EQ(button.type, "prismatic") << jumps;
+    EXPECT_LE(button.confidence, 0.25) << jumps;
+    EXPECT_LT(std::acos(std::min(1.0, std::abs(button.axis.dot(Vector3d::UnitZ())))), 0.1) << jumps;
+    for (const std::string named : {"revolute", ""}) {
+      const JointEstimate knob = estimate_joint(t, no_hand(frames), true, nullptr, named);
+      EXPECT_NE(knob.type, "prismatic") << jumps << named;
+      EXPECT_FALSE(knob.type_from_name) << jumps << named;
+    }
+    // Nobody operates an effector: no press, whatever its name.
+    EXPECT_FALSE(estimate_joint(t, no_hand(frames), false, nullptr, "prismatic").press_past_slip) << jumps;
+  }
+  // A press that shows is no name's: the flag stays off.
+  const JointEstimate shown =
+      estimate_joint(slipping_round_part(ridged_button(8), true, false, frames, 71), no_hand(frames), true, nullptr, "prismatic");
+  EXPECT_TRUE(shown.press_past_slip);
+  EXPECT_FALSE(shown.type_from_name);
 }
 
 // A plain round button 6 cm across (rim and front, axis z, no ridge):
@@ -963,3 +994,52 @@ TEST(PipelineInfer, MeanTransformAndSpecNames) {
 }
 
 }  // namespace
+
+// The round knob once more, its rim held and turned by a fraction of a
+// radian, the hand's contacts seen with 8 mm noise: over so short an arc
+// the noise makes a slide about as likely as the turn.
+std::vector<Vector3d> rim_held(int frames, double sweep, unsigned seed) {
+  std::vector<Vector3d> hand = no_hand(frames);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0, 0.008);
+  for (int f = 20; f < 100; ++f) {
+    const double q = sweep * (f - 20) / 79.0;
+    hand[f] = Vector3d(0.06 * std::cos(q), 0.06 * std::sin(q), 0.02) + Vector3d(g(rng), g(rng), g(rng));
+  }
+  return hand;
+}
+
+TEST(PipelineInfer, ANameSettlesANearTieAndNothingMore) {
+  const int frames = 120;
+  const PartTrack t = turning(ring(0.03, 0.02), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0005, 4);
+  // Turned 0.4 rad: the hand's contacts favour a slide by less than the
+  // name's kNamePriorOdds, four to one (these seeds' odds: 1.5 to 1; 10 to 1 below).
+  const std::vector<Vector3d> tie = rim_held(frames, 0.4, 11);
+  const JointEstimate unnamed = estimate_joint(t, tie);
+  ASSERT_EQ(unnamed.source, "hand");
+  ASSERT_EQ(unnamed.type, "prismatic");
+  ASSERT_GT(unnamed.from_hand.p_prismatic, unnamed.from_hand.p_revolute);
+  ASSERT_LT(unnamed.from_hand.p_prismatic, kNamePriorOdds * unnamed.from_hand.p_revolute);
+  const JointEstimate knob = estimate_joint(t, tie, true, nullptr, "revolute");
+  EXPECT_EQ(knob.type, "revolute");
+  EXPECT_TRUE(knob.type_from_name);
+  EXPECT_FALSE(knob.assumed_moving);
+  EXPECT_EQ(knob.source, "hand");
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(knob.axis.dot(Vector3d::UnitZ())))), 0.5);
+  // The posterior with the prior: 4 p_rev / (4 p_rev + p_pri).
+  const double p = kNamePriorOdds * unnamed.from_hand.p_revolute;
+  EXPECT_NEAR(knob.confidence, p / (p + unnamed.from_hand.p_prismatic), 1e-9);
+  // The name agreeing changes nothing but the flag's absence.
+  const JointEstimate slide = estimate_joint(t, tie, true, nullptr, "prismatic");
+  EXPECT_EQ(slide.type, "prismatic");
+  EXPECT_FALSE(slide.type_from_name);
+  // Turned 0.5 rad with other noise: ten to one for the slide. The name
+  // does not outweigh that.
+  const std::vector<Vector3d> plain = rim_held(frames, 0.5, 3);
+  const JointEstimate plain_unnamed = estimate_joint(t, plain);
+  ASSERT_EQ(plain_unnamed.type, "prismatic");
+  ASSERT_GT(plain_unnamed.from_hand.p_prismatic, kNamePriorOdds * plain_unnamed.from_hand.p_revolute);
+  const JointEstimate plain_knob = estimate_joint(t, plain, true, nullptr, "revolute");
+  EXPECT_EQ(plain_knob.type, "prismatic");
+  EXPECT_FALSE(plain_knob.type_from_name);
+}

@@ -695,11 +695,18 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     const Track untwisted = part_samples(track, model_centre, kPartBin, &press_frames, true, &symmetry);
     std::vector<double> along;
     for (const Eigen::Vector3d& p : untwisted.positions) along.push_back(p.dot(symmetry));
-    if (held_press(along)) {
+    // Where no press held for a while shows (presses of two or three
+    // millimetres seen in a third of the frames, their centres moving a
+    // millimetre: s0013's and s0058's buttons), the track still shows the
+    // part moved, by a turn its shape cannot show plainly, and its name
+    // says a slide: it is pressed, along the same axis, typed by its name.
+    const bool pressed = held_press(along);
+    if (pressed || named == "prismatic") {
       std::vector<std::vector<int>> frames_one_by_one;
       spin_axis = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), "revolute")
                       .axis.normalized();
       j.press_past_slip = spin_axis.allFinite();
+      j.type_from_name = j.press_past_slip && !pressed;
     }
   }
   bool part_decides = j.swing_past_slip || j.press_past_slip || part_shows_motion;
@@ -720,7 +727,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   else if (hand_decides) type = j.from_hand.type, decider = &j.from_hand;
   else if (j.has_part_track) decider = &j.from_part;
   else if (j.has_hand_track) decider = &j.from_hand;
-  if (j.press_past_slip) j.confidence = 0.5;  // by the rule, not by the likelihoods (which favour the turn)
+  if (j.press_past_slip) j.confidence = j.type_from_name ? 0.25 : 0.5;  // by the rule, not by the likelihoods
   if (decider) {
     j.confidence = type == "revolute" ? decider->p_revolute : type == "prismatic" ? decider->p_prismatic : decider->p_fixed;
     if (type == "fixed" && j.has_part_track && !part_visible) j.confidence = 1.0;  // nothing shows a motion
@@ -740,6 +747,32 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       type = revolute <= prismatic ? "revolute" : "prismatic";
       j.grip_with_hand = true;
       j.confidence = 1 / (1 + std::exp(-0.5 * std::abs(prismatic - revolute)));
+    }
+  }
+  // The name as a prior between the two moving joints, wherever a track's
+  // likelihoods chose one: kNamePriorOdds to 1 for the one it names. It
+  // settles near-ties a hand's few noisy samples leave (s0030's light
+  // button: 0.65 revolute against 0.30 prismatic on the hand's contacts)
+  // and never a motion any track plainly shows (those odds run to
+  // thousands and more). Not the rules above: they read what the
+  // likelihoods cannot (a slip), not a tie.
+  const std::string other_moving = type == "revolute" ? "prismatic" : type == "prismatic" ? "revolute" : "";
+  if (!other_moving.empty() && named == other_moving && !j.swing_past_slip && !j.press_past_slip &&
+      (decider || j.grip_with_hand)) {
+    double odds_against_name;  // the chosen joint's likelihood over the named one's
+    if (j.grip_with_hand) {
+      const auto bic = [&](auto member) { return bic_of(j.from_grip.*member) + bic_of(j.from_hand.*member); };
+      const double named_bic = named == "revolute" ? bic(&Articulation::revolute) : bic(&Articulation::prismatic);
+      const double chosen_bic = named == "revolute" ? bic(&Articulation::prismatic) : bic(&Articulation::revolute);
+      odds_against_name = std::exp(-0.5 * (chosen_bic - named_bic));
+    } else {
+      const double p_named = named == "revolute" ? decider->p_revolute : decider->p_prismatic;
+      odds_against_name = j.confidence / std::max(p_named, 1e-300);
+    }
+    if (std::isfinite(odds_against_name) && odds_against_name < kNamePriorOdds) {
+      type = named;
+      j.type_from_name = true;
+      j.confidence = kNamePriorOdds / (kNamePriorOdds + odds_against_name);
     }
   }
   // A receptor the hand held (its contacts make a track) whose motion

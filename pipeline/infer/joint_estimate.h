@@ -52,8 +52,11 @@ struct JointEstimate {
   // A receptor the hand held whose motion neither track shows: moving by
   // assumption (the likelier moving model), not by evidence.
   bool assumed_moving = false;
-  // Moving by assumption, and typed by the part's name (joint_names.h)
-  // rather than by the fused BIC, which two fits to noise decide.
+  // Typed by the part's name (joint_names.h): moving by assumption, where
+  // the fused BIC of two fits to noise would decide; pressed past a slip
+  // whose press does not show (press_past_slip); or a track's near-tie
+  // between a turn and a slide settled by the name's prior
+  // (kNamePriorOdds).
   bool type_from_name = false;
   // A part that turns about an axis through itself, typed prismatic: its
   // hinge fit explained its poses better with a slide along the same axis
@@ -109,6 +112,13 @@ constexpr double kSlipVisibility = 0.5;
 // plainly by the part's shape: no registration slips into it.
 constexpr double kPlainTurnVisibility = 1.0;
 
+// The prior odds for the moving joint a part's name names against the
+// other one (joint_names.h): a name is a hint, not a measurement. Most
+// buttons slide and most knobs turn, but a key may turn and a wheel may
+// roll: four to one, so likelihoods of a few to one (a hand's handful of
+// noisy samples) yield to it and plain evidence never does.
+constexpr double kNamePriorOdds = 4;
+
 // Whether a joint axis passes through the part (a knob's, a button's) rather
 // than beside it (a lever's, a door's hinge): the part's centroid is nearer
 // the axis line than the median distance of its points from a line along
@@ -155,8 +165,10 @@ bool near_symmetry_axis(const Cloud& model, Eigen::Vector3d* axis);
 // into (a round knob's, a round button's), since a hand holding a part
 // moves with it and its fingers show a twist or a press the part hides.
 // `named`: the joint the part's name speaks of (joint_named(): "prismatic",
-// "revolute" or ""); it types a part moving by assumption only
-// (JointEstimate::type_from_name), never one whose motion shows.
+// "revolute" or ""); it types a part moving by assumption, a receptor
+// whose slipping registration hides its press, and it is the prior
+// (kNamePriorOdds) between a turn and a slide wherever likelihoods choose
+// (JointEstimate::type_from_name); a motion a track plainly shows outweighs it.
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points,
                              bool operated = true, const PartTrack* grip = nullptr, const std::string& named = "");
 

@@ -1,12 +1,14 @@
-// The joint a receptor's name speaks of, for when its motion does not
-// show. A receptor the hand held whose motion neither its own track nor the
+// The joint a part's name speaks of, for when its motion does not show
+// or shows no more plainly one way than the other. A receptor the hand held whose motion neither its own track nor the
 // hand's shows (a button pressed under the finger, a knob turned by its
 // centre) was operated all the same, and its joint was a coin toss between
 // two fits to noise (estimate_joint(): JointEstimate::assumed_moving). What
 // the part is still says how it moves, as the paper's vision-language model
 // would read it: a button, a key or a slider slides; a knob, a dial, a
 // lever or a rocker turns. A "switch" names none: it comes as a rocker, a
-// toggle and a slide.
+// toggle and a slide. The same name settles a track's near-tie between a
+// turn and a slide (kNamePriorOdds, joint_estimate.h) and a round button's
+// press its slipping registration hides.
 #pragma once
 
 #include <string>
