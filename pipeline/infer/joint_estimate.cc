@@ -759,17 +759,13 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   const std::string other_moving = type == "revolute" ? "prismatic" : type == "prismatic" ? "revolute" : "";
   if (!other_moving.empty() && named == other_moving && !j.swing_past_slip && !j.press_past_slip &&
       (decider || j.grip_with_hand)) {
-    double odds_against_name;  // the chosen joint's likelihood over the named one's
-    if (j.grip_with_hand) {
-      const auto bic = [&](auto member) { return bic_of(j.from_grip.*member) + bic_of(j.from_hand.*member); };
-      const double named_bic = named == "revolute" ? bic(&Articulation::revolute) : bic(&Articulation::prismatic);
-      const double chosen_bic = named == "revolute" ? bic(&Articulation::prismatic) : bic(&Articulation::revolute);
-      odds_against_name = std::exp(-0.5 * (chosen_bic - named_bic));
-    } else {
-      const double p_named = named == "revolute" ? decider->p_revolute : decider->p_prismatic;
-      odds_against_name = j.confidence / std::max(p_named, 1e-300);
-    }
-    if (std::isfinite(odds_against_name) && odds_against_name < kNamePriorOdds) {
+    // The chosen joint's likelihood over the named one's: the confidence
+    // is the chosen one's posterior (against the other moving joint alone
+    // where the grip's and the hand's BICs chose together).
+    const double p_named =
+        j.grip_with_hand ? 1 - j.confidence : named == "revolute" ? decider->p_revolute : decider->p_prismatic;
+    const double odds_against_name = j.confidence / std::max(p_named, 1e-300);
+    if (odds_against_name < kNamePriorOdds) {
       type = named;
       j.type_from_name = true;
       j.confidence = kNamePriorOdds / (kNamePriorOdds + odds_against_name);
