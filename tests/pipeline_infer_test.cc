@@ -735,6 +735,33 @@ TEST(PipelineInfer, TheGripShowsTheTwistOrThePressTheRoundPartHides) {
   EXPECT_EQ(opened.type, "revolute");
 }
 
+TEST(PipelineInfer, AKnobTurnedPastAQuarterTurnIsReadThroughTheGripsHalfTurns) {
+  // A nearly flat hand registers about as well turned half a turn about the
+  // knob: past an eighth of a turn, half the frames' grip poses come out
+  // half a turn off. The knob turned 3 rad and back reads 3 rad, not a
+  // twist wrapped into a half turn (twist_unwrap.h).
+  const int frames = 150;
+  std::mt19937 rng(67);
+  std::normal_distribution<double> g(0, 0.0005);
+  std::bernoulli_distribution flip(0.5);
+  auto angle = [](int f) { return 3.0 * std::sin(kPi * (f - 20) / 110.0); };
+  const PartTrack twist = grip(frames, 20, 130, [&](int f) {
+    const double a = angle(f) + (std::abs(angle(f)) > kPi / 4 && flip(rng) ? kPi : 0.0);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(a, Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() += Vector3d(g(rng), g(rng), g(rng));
+    return T;
+  });
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) hand[f] = Vector3d(0, 0, 0.012);
+  const JointEstimate knob = estimate_joint(slipping(frames, 62), hand, true, &twist);
+  ASSERT_EQ(knob.source, "grip");
+  EXPECT_EQ(knob.type, "revolute");
+  ASSERT_EQ(static_cast<int>(knob.q.size()), frames);
+  for (int f : {40, 75, 110}) EXPECT_NEAR(std::abs(knob.q[f] - knob.q[10]), std::abs(angle(f)), 0.1) << "frame " << f;
+  EXPECT_NEAR(knob.range_hi - knob.range_lo, 3.0, 0.15);
+}
+
 TEST(PipelineInfer, TheGripAndTheHandsContactsAddTheirEvidence) {
   // A lever turned 1.2 rad about z by a hand 3 cm from its hinge, in frames
   // 20 to 130. Its own track shows nothing; the grip (a few fingertips, their

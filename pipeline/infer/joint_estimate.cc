@@ -8,6 +8,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "pipeline/cloud/icp.h"
+#include "pipeline/infer/part_tracking.h"
+#include "pipeline/infer/twist_unwrap.h"
 
 namespace efc::pipeline {
 
@@ -836,6 +838,13 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
         if (r.w() < 0) r.coeffs() = -r.coeffs();
         q[f] = 2 * std::atan2(r.vec().dot(j.axis), r.w());  // the twist about the axis, (-pi, pi]
       }
+    }
+    // The hand's registration is ambiguous by half a turn about the knob
+    // (twist_unwrap.h): its twist is unwrapped along the recording.
+    if (type != "prismatic") {
+      std::vector<bool> held(n, false);
+      for (int f : hand_frames) held[f] = true;
+      q = unwrap_half_turns(q, held, kRegraspFrames);
     }
   } else if (grip_decides || geometry_from_part) {
     // The chosen model fitted frame by frame on the track that decided. A
