@@ -19,9 +19,10 @@ constexpr double kDropCost = 4.0;
 // A new grasp starts within this of where the last one ended (rad): it
 // takes the nearest branch.
 constexpr double kRegraspScale = 0.5;
-// How many samples back a kept one may follow the last kept one (up to
-// three dropped in a row).
-constexpr int kWindow = 4;
+// How many samples back a kept one may follow the last kept one: up to six
+// dropped in a row (a fifth of a second; a hand seen edge on as it grasps
+// reads a quarter turn off for four frames: s0012's knob).
+constexpr int kWindow = 7;
 // The branches a step between two kept samples may take: its difference
 // reduced to (-pi/2, pi/2], plus -1, 0 or +1 half turns.
 constexpr int kBranches = 3;
