@@ -74,9 +74,11 @@ std::vector<double> unwrap_half_turns(const std::vector<double>& twist, const st
     if (i < kWindow) cost[index(i, 0, 1)] = kDropCost * i;
     for (int back = 1; back <= kWindow && back <= i; ++back) {
       const int p = i - back;
+      const bool new_grasp = regrasp(p, i);
       for (int b = 0; b < kBranches; ++b) {
+        if (new_grasp && b != 1) continue;  // a new grasp: the nearest branch
         const double d = step(p, i, b);
-        if (regrasp(p, i) && b != 1) continue;  // a new grasp: the nearest branch
+        const double v = speed(p, i, b);
         double best = kInf;
         int arg = -1;
         for (int pb = 0; pb <= kWindow && pb <= p; ++pb)
@@ -84,7 +86,7 @@ std::vector<double> unwrap_half_turns(const std::vector<double>& twist, const st
             const double c = cost[index(p, pb, bb)];
             if (c == kInf) continue;
             const double v_in = pb == 0 ? 0.0 : speed(p - pb, p, bb);
-            const double move = regrasp(p, i) ? sq(d / kRegraspScale) : sq((speed(p, i, b) - v_in) / kAccelerationScale);
+            const double move = new_grasp ? sq(d / kRegraspScale) : sq((v - v_in) / kAccelerationScale);
             const double total = c + move + kDropCost * (back - 1);
             if (total < best) best = total, arg = index(p, pb, bb);
           }
