@@ -2,7 +2,7 @@
 // (stage 4), measured against the truth of synthetic recordings
 // (bench/README.md):
 //
-//   part_motion_eval SUITE_OR_SEQUENCE... [--threads T] [--part NAME] [--frames]
+//   part_motion_eval SUITE_OR_SEQUENCE... [--threads T] [--part NAME] [--frames] [--axes]
 //
 // Each argument is a sequence folder (with truth/, as efc synth writes) or a
 // suite folder (every */seq inside). Each sequence is observed and its
@@ -24,7 +24,10 @@
 // tracked displacement along the true axis (of the centre, and of the part
 // track's own hinge axis point nearest it, which a spin about that axis
 // leaves in place: a round button's press shows there under any spin), and
-// the grip's twist about the true axis and slide along it.
+// the grip's twist about the true axis and slide along it. --axes: under each
+// part, how far (deg) the chosen joint's axis and the part's, the hand's and
+// the grip's fitted axes lie off the true axis, and the track the geometry
+// came from.
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -126,17 +129,19 @@ Eigen::Isometry3d matrix16(const json& m) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const char* usage = "usage: part_motion_eval SUITE_OR_SEQUENCE... [--threads T] [--part NAME] [--frames]\n";
+  const char* usage = "usage: part_motion_eval SUITE_OR_SEQUENCE... [--threads T] [--part NAME] [--frames] [--axes]\n";
   std::vector<fs::path> sequences;
   efc::pipeline::ObserveOptions observe;
   std::string only_part;
-  bool per_frame = false;
+  bool per_frame = false, axes = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--threads" && i + 1 < argc) {
       observe.threads = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--frames") {
       per_frame = true;
+    } else if (a == "--axes") {
+      axes = true;
     } else if (a == "--part" && i + 1 < argc) {
       only_part = argv[++i];
     } else if (a == "-h" || a == "--help") {
@@ -303,6 +308,21 @@ int main(int argc, char** argv) {
                   percentile(pos_err, 0.9), est.has_part_track ? est.from_part.type.c_str() : "-",
                   est.has_hand_track ? est.from_hand.type.c_str() : "-",
                   est.has_grip_track ? est.from_grip.type.c_str() : "-", est.type.c_str(), right ? "" : "  x");
+      if (axes) {
+        // Off the true axis in degrees, either sign (a fit's sign is arbitrary).
+        auto off = [&](bool has, const std::string& type, const Eigen::Vector3d& axis) {
+          if (!has || type == "fixed" || !axis.allFinite() || axis.norm() == 0) return std::string("-");
+          char buf[16];
+          std::snprintf(buf, sizeof buf, "%.1f",
+                        std::acos(std::min(1.0, std::abs(axis.normalized().dot(true_axis)))) * kDeg);
+          return std::string(buf);
+        };
+        std::printf("  axes off the truth (deg): chosen %s (from %s)  part %s  hand %s  grip %s\n",
+                    off(true, est.type, est.axis).c_str(), est.source.c_str(),
+                    off(est.has_part_track, est.from_part.type, est.from_part.axis).c_str(),
+                    off(est.has_hand_track, est.from_hand.type, est.from_hand.axis).c_str(),
+                    off(est.has_grip_track, est.from_grip.type, est.from_grip.axis).c_str());
+      }
       std::fflush(stdout);
     }
   }
