@@ -762,6 +762,46 @@ TEST(PipelineInfer, AKnobTurnedPastAQuarterTurnIsReadThroughTheGripsHalfTurns) {
   EXPECT_NEAR(knob.range_hi - knob.range_lo, 3.0, 0.15);
 }
 
+TEST(PipelineInfer, ARockersGripSwingsAboutItsHingeNotAboutThePartsSlip) {
+  // A small part whose registration only slips round an axis through itself
+  // (z), pressed by a hand that swings it 0.3 rad about a hinge across it
+  // (x, through its base) and back, twice: a rocker. The grip's turn shows
+  // plainly about the hinge and not at all about the slip's axis, so the
+  // grip's own hinge is the joint, not the slip's axis.
+  const int frames = 150;
+  std::mt19937 rng(71);
+  std::normal_distribution<double> g(0, 0.0005);
+  const Vector3d hinge_point(0, 0, -0.005);
+  auto swing = [](int f) { return f >= 20 && f < 130 ? 0.3 * std::abs(std::sin(2 * kPi * (f - 20) / 110.0)) : 0.0; };
+  const PartTrack rocked = grip(frames, 20, 130, [&](int f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(swing(f), Vector3d::UnitX()).toRotationMatrix();
+    T.translation() = hinge_point - T.linear() * hinge_point + Vector3d(g(rng), g(rng), g(rng));
+    return T;
+  });
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) hand[f] = Vector3d(0, 0, 0.012);
+  const JointEstimate rocker = estimate_joint(slipping(frames, 62), hand, true, &rocked);
+  EXPECT_EQ(rocker.source, "grip");
+  EXPECT_TRUE(rocker.grip_swings_past_slip);
+  EXPECT_EQ(rocker.type, "revolute");
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(rocker.axis.dot(Vector3d::UnitX())))), 0.1);
+  EXPECT_NEAR(rocker.range_hi - rocker.range_lo, 0.3, 0.05);
+  ASSERT_EQ(static_cast<int>(rocker.q.size()), frames);
+  EXPECT_NEAR(std::abs(rocker.q[47] - rocker.q[10]), 0.3, 0.05);
+  // A knob's grip twists about the slip's axis: the slip's axis stays.
+  const PartTrack twisted = grip(frames, 20, 130, [&](int f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(3 * swing(f), Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() += Vector3d(g(rng), g(rng), g(rng));
+    return T;
+  });
+  const JointEstimate knob = estimate_joint(slipping(frames, 62), hand, true, &twisted);
+  EXPECT_EQ(knob.source, "grip");
+  EXPECT_FALSE(knob.grip_swings_past_slip);
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(knob.axis.dot(Vector3d::UnitZ())))), 0.1);
+}
+
 TEST(PipelineInfer, TheGripAndTheHandsContactsAddTheirEvidence) {
   // A lever turned 1.2 rad about z by a hand 3 cm from its hinge, in frames
   // 20 to 130. Its own track shows nothing; the grip (a few fingertips, their

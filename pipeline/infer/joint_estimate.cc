@@ -147,6 +147,28 @@ double median_of(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The grip's twist about `axis` (world frame, unit) that most of its
+// tracked frames stay within: the 90th percentile of its size. A knob's
+// turned grip twists by tens of degrees about the knob's axis, however its
+// registration aliases; a rocker's or a pedal's pressed grip barely at all
+// about the axis its part's registration slips round.
+double grip_twist_p90(const PartTrack& grip, const Eigen::Vector3d& axis) {
+  std::vector<double> twist;
+  for (size_t f = 0; f < grip.motion.size() && f < grip.tracked.size(); ++f) {
+    if (!grip.tracked[f]) continue;
+    Eigen::Quaterniond r(grip.motion[f].linear());
+    if (r.w() < 0) r.coeffs() = -r.coeffs();
+    twist.push_back(std::abs(2 * std::atan2(r.vec().dot(axis), r.w())));
+  }
+  if (twist.empty()) return 0;
+  std::sort(twist.begin(), twist.end());
+  return twist[(twist.size() - 1) * 9 / 10];
+}
+
+// A grip whose twist about an axis stays within this (10 degrees) shows no
+// turn about it: a demonstration turns a knob further.
+constexpr double kShownTwist = 0.17;
+
 // A frame's turn away from its neighbourhood is a swing about a hinge
 // beside the part when its centroid moves by at least this share of the
 // angle times the part's radius (a door's centroid is about its radius
@@ -815,15 +837,29 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     for (int f : hand_frames) h[f] = hand_points[f];
     return smoothed(q_from_hand(j, h), 4);
   };
+  // The part turns about an axis through itself that its shape barely
+  // shows: its symmetry axis, a knob's and a button's joint axis alike,
+  // which its slipping registration finds better than the grip's fingers
+  // do. Unless the grip plainly turns about an axis of its own and not
+  // about that one at all: then the slip is the registration's alone, and
+  // the hand swings the part about a hinge its slip hides (a rocker's, a
+  // pedal's: their registrations slip by tens of degrees about an axis 80
+  // degrees off their hinge, while the grip's turn of 15 to 20 degrees about
+  // the hinge comes out within 2 degrees of it).
+  Articulation slip;
+  bool slip_axis_turns = false;
   if (grip_decides && part_may_slip) {
-    // The part turns about an axis through itself that its shape barely
-    // shows: its symmetry axis, a knob's and a button's joint axis alike,
-    // which its slipping registration finds better than the grip's
-    // fingers do. The grip says which motion it is, and how far, along
-    // that axis: its turn about it or its slide along it, frame by frame.
     std::vector<std::vector<int>> frames_one_by_one;
-    const Articulation a =
-        estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), "revolute");
+    slip = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), "revolute");
+    j.grip_swings_past_slip = type == "revolute" && j.from_grip.type == "revolute" &&
+                              j.grip_visibility >= kSlipVisibility &&
+                              grip_twist_p90(*grip, slip.axis.normalized()) < kShownTwist;
+    slip_axis_turns = !j.grip_swings_past_slip;
+  }
+  if (slip_axis_turns) {
+    // The grip says which motion it is, and how far, along the slip's
+    // axis: its turn about it or its slide along it, frame by frame.
+    const Articulation& a = slip;
     j.source = "grip";
     j.type = type;
     j.axis = a.axis;

@@ -87,6 +87,10 @@ struct JointEstimate {
   // The grip decided, and the hand's contacts showed the part moving too:
   // revolute or prismatic by the two tracks' BICs together.
   bool grip_with_hand = false;
+  // The part's registration slipped about an axis through itself, and the
+  // grip turned plainly about an axis of its own and not about that one:
+  // the grip's own hinge gave the geometry (a rocker's, a pedal's).
+  bool grip_swings_past_slip = false;
   int hand_samples = 0;
   // How much of the part track's motion its shape can show (visibility()).
   double part_visibility = 0;
