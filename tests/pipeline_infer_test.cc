@@ -935,6 +935,51 @@ TEST(PipelineInfer, ALeversPressShowsThroughRegistrationNoiseAndFlips) {
   EXPECT_NEAR(j.range_hi - j.range_lo, 0.35, 0.1);
 }
 
+TEST(PipelineInfer, AHeldLeversHingeIsTheGripsWhereItsOwnRegistrationTilts) {
+  // A lever's bar is nearly round about its length, and its registration
+  // turns about that length as the lever swings (here by half the swing):
+  // the hinge its poses fit tilts 27 degrees. The hand holding it turns
+  // with it about the true hinge (y), and its grip shows that plainly.
+  const int frames = 140;
+  std::mt19937 rng(73);
+  std::normal_distribution<double> g(0, 1);
+  PartTrack t = track_of(lever());
+  for (int f = 0; f < frames; ++f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(press(f), Vector3d::UnitY()).toRotationMatrix() *
+                 Eigen::AngleAxisd(0.5 * press(f), Vector3d::UnitX()).toRotationMatrix() *
+                 Eigen::AngleAxisd(0.01, Vector3d(g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
+    T.translation() = 0.0005 * Vector3d(g(rng), g(rng), g(rng));
+    t.motion.push_back(T);
+    t.tracked.push_back(true);
+    t.rmse.push_back(0.001), t.inliers.push_back(1), t.conditioning.push_back(1);
+  }
+  t.frames_tracked = frames;
+  with_information(&t);
+  const PartTrack held = grip(frames, 20, 130, [&](int f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(press(f), Vector3d::UnitY()).toRotationMatrix();
+    T.translation() = 0.0005 * Vector3d(g(rng), g(rng), g(rng));
+    return T;
+  });
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) hand[f] = Vector3d(0.05, 0, 0.012);
+  auto off_y = [](const JointEstimate& j) { return std::acos(std::min(1.0, std::abs(j.axis.dot(Vector3d::UnitY())))); };
+  // Alone, the part's tilted hinge.
+  const JointEstimate alone = estimate_joint(t, hand, true, nullptr);
+  ASSERT_EQ(alone.type, "revolute");
+  EXPECT_GT(off_y(alone), 0.3);
+  const JointEstimate lever = estimate_joint(t, hand, true, &held);
+  ASSERT_EQ(lever.type, "revolute");
+  EXPECT_EQ(lever.source, "part");
+  EXPECT_TRUE(lever.hinge_from_grip);
+  EXPECT_LT(off_y(lever), 0.05);
+  EXPECT_LT(Eigen::Vector2d(lever.origin.x(), lever.origin.z()).norm(), 0.01);
+  EXPECT_NEAR(lever.range_hi - lever.range_lo, 0.35, 0.05);
+  ASSERT_EQ(static_cast<int>(lever.q.size()), frames);
+  EXPECT_NEAR(std::abs(lever.q[50] - lever.q[30]), 0.35, 0.05);
+}
+
 TEST(PipelineInfer, ADoorSnappedOpenForAFewFramesIsAMotionNotASpike) {
   // A door a function snaps open by 60 degrees in three frames, holds open
   // for five and shuts in three, twice; one frame at rest is flipped about

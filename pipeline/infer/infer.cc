@@ -73,6 +73,7 @@ ojson joint_report(const JointEstimate& j) {
   if (j.press_past_slip) r["press_past_slip"] = true;
   if (j.grip_with_hand) r["grip_with_hand"] = true;
   if (j.grip_swings_past_slip) r["grip_swings_past_slip"] = true;
+  if (j.hinge_from_grip) r["hinge_from_grip"] = true;
   if (j.plain_slide) r["plain_slide"] = true;
   if (j.type != "fixed") {
     r["axis"] = vec(j.axis);

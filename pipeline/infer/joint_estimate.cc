@@ -902,6 +902,35 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.origin = a.origin;
     for (size_t k = 0; k < frames.size() && k < a.q.size(); ++k)
       for (int f : frames[k]) q[f] = a.q[k];
+    // A held lever's or handle's own poses fit a hinge 5 to 40 degrees off
+    // (a bar is nearly round about its length, which its registration can
+    // turn about); the hand holding it turns with it, and its grip, a shape
+    // that shows its turn plainly, fits the hinge within a few degrees
+    // (s0003's, s0006's, s0036's levers, s0053's pump handle, in
+    // part_motion_eval --axes). Where the part's turn is
+    // one its shape shows (a round knob's, which its shape barely shows, is
+    // about its own axis, and so is its slip: its own axis is best) and the
+    // grip's turn shows plainly (kPlainTurnVisibility), the grip's hinge is
+    // the joint's; the part's poses still give its position, their twist
+    // about that hinge.
+    if (!grip_decides && !j.swing_past_slip && !j.press_past_slip && type == "revolute" && operated &&
+        j.has_grip_track && j.from_grip.type == "revolute" && j.grip_visibility >= kPlainTurnVisibility &&
+        j.part_visibility >= kSlipVisibility) {
+      std::vector<std::vector<int>> grip_frames;
+      const Articulation g = estimate_articulation_as(part_samples(*grip, grip_centre, 1, &grip_frames), "revolute");
+      if (g.revolute.valid && g.axis.allFinite()) {
+        j.axis = g.axis.normalized();
+        j.origin = g.origin;
+        j.hinge_from_grip = true;
+        std::fill(q.begin(), q.end(), kNaN);
+        for (const std::vector<int>& sample_frames : frames)
+          for (int f : sample_frames) {
+            Eigen::Quaterniond r(track.motion[f].linear());
+            if (r.w() < 0) r.coeffs() = -r.coeffs();
+            q[f] = 2 * std::atan2(r.vec().dot(j.axis), r.w());
+          }
+      }
+    }
     // A slide the part's own track found along a direction its shape barely
     // shows (a flat button's face sliding in its own plane, where only its
     // edges hold the registration and it wanders by centimetres) may hide
