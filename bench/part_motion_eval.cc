@@ -317,11 +317,12 @@ int main(int argc, char** argv) {
                         std::acos(std::min(1.0, std::abs(axis.normalized().dot(true_axis)))) * kDeg);
           return std::string(buf);
         };
-        std::printf("  axes off the truth (deg): chosen %s (from %s)  part %s  hand %s  grip %s\n",
+        std::printf("  axes off the truth (deg): chosen %s (from %s)  part %s  hand %s  grip %s  (hand frames %d, grip samples %zu)\n",
                     off(true, est.type, est.axis).c_str(), est.source.c_str(),
                     off(est.has_part_track, est.from_part.type, est.from_part.axis).c_str(),
                     off(est.has_hand_track, est.from_hand.type, est.from_hand.axis).c_str(),
-                    off(est.has_grip_track, est.from_grip.type, est.from_grip.axis).c_str());
+                    off(est.has_grip_track, est.from_grip.type, est.from_grip.axis).c_str(), est.hand_samples,
+                    est.has_grip_track ? est.from_grip.samples : size_t{0});
       }
       std::fflush(stdout);
     }
