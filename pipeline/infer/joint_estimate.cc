@@ -907,12 +907,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     // turn about); the hand holding it turns with it, and its grip, a shape
     // that shows its turn plainly, fits the hinge within a few degrees
     // (s0003's, s0006's, s0036's levers, s0053's pump handle, in
-    // part_motion_eval --axes). Where the part's turn is
-    // one its shape shows (a round knob's, which its shape barely shows, is
-    // about its own axis, and so is its slip: its own axis is best) and the
-    // grip's turn shows plainly (kPlainTurnVisibility), the grip's hinge is
-    // the joint's; the part's poses still give its position, their twist
-    // about that hinge.
+    // part_motion_eval --axes). Where the part's turn is one its shape
+    // shows (a round knob's, which its shape barely shows, is about its own
+    // axis, and so is its slip: its own axis is best) and the grip's turn
+    // shows plainly (kPlainTurnVisibility), the grip's hinge is the joint's;
+    // the part's poses still give its position, their twist about that
+    // hinge.
     if (!grip_decides && !j.swing_past_slip && !j.press_past_slip && type == "revolute" && operated &&
         j.has_grip_track && j.from_grip.type == "revolute" && j.grip_visibility >= kPlainTurnVisibility &&
         j.part_visibility >= kSlipVisibility) {
@@ -961,6 +961,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     if (!grip_decides && !j.swing_past_slip && type == "revolute" && slides_under_a_slip(track.model, j.from_part, part_frames, a, frames)) {
       j.type = "prismatic";
       j.slide_over_turn = true;
+      j.hinge_from_grip = false;  // a slide: no hinge at all
       size_t peak = 0;
       for (size_t k = 0; k < a.slide.size(); ++k)
         if (std::abs(a.slide[k]) > std::abs(a.slide[peak])) peak = k;

@@ -91,8 +91,9 @@ struct JointEstimate {
   // grip turned plainly about an axis of its own and not about that one:
   // the grip's own hinge gave the geometry (a rocker's, a pedal's).
   bool grip_swings_past_slip = false;
-  // The part turned about a hinge beside itself, held by a grip whose turn
-  // its shape shows plainly: the grip's hinge (axis, origin) is the joint's.
+  // The part's own track decided a turn its shape shows, and the grip
+  // holding it turned plainly too: the grip's hinge (axis, origin) is the
+  // joint's, the part's twist about it its position (a lever's).
   bool hinge_from_grip = false;
   int hand_samples = 0;
   // How much of the part track's motion its shape can show (visibility()).
