@@ -147,6 +147,14 @@ double median_of(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The turn of motion `m` about `axis` (world frame, unit): the angle of its
+// twist in the swing-twist decomposition, in (-pi, pi].
+double twist_about(const Eigen::Isometry3d& m, const Eigen::Vector3d& axis) {
+  Eigen::Quaterniond r(m.linear());
+  if (r.w() < 0) r.coeffs() = -r.coeffs();
+  return 2 * std::atan2(r.vec().dot(axis), r.w());
+}
+
 // The grip's twist about `axis` (world frame, unit) that most of its
 // tracked frames stay within: the 90th percentile of its size. A knob's
 // turned grip twists by tens of degrees about the knob's axis, however its
@@ -154,12 +162,8 @@ double median_of(std::vector<double> v) {
 // about the axis its part's registration slips round.
 double grip_twist_p90(const PartTrack& grip, const Eigen::Vector3d& axis) {
   std::vector<double> twist;
-  for (size_t f = 0; f < grip.motion.size() && f < grip.tracked.size(); ++f) {
-    if (!grip.tracked[f]) continue;
-    Eigen::Quaterniond r(grip.motion[f].linear());
-    if (r.w() < 0) r.coeffs() = -r.coeffs();
-    twist.push_back(std::abs(2 * std::atan2(r.vec().dot(axis), r.w())));
-  }
+  for (size_t f = 0; f < grip.motion.size() && f < grip.tracked.size(); ++f)
+    if (grip.tracked[f]) twist.push_back(std::abs(twist_about(grip.motion[f], axis)));
   if (twist.empty()) return 0;
   std::sort(twist.begin(), twist.end());
   return twist[(twist.size() - 1) * 9 / 10];
@@ -870,9 +874,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       if (type == "prismatic") {
         q[f] = (m * grip_centre - grip_centre).dot(j.axis);
       } else {
-        Eigen::Quaterniond r(m.linear());
-        if (r.w() < 0) r.coeffs() = -r.coeffs();
-        q[f] = 2 * std::atan2(r.vec().dot(j.axis), r.w());  // the twist about the axis, (-pi, pi]
+        q[f] = twist_about(m, j.axis);
       }
     }
     // The hand's registration is ambiguous by half a turn about the knob
@@ -924,11 +926,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
         j.hinge_from_grip = true;
         std::fill(q.begin(), q.end(), kNaN);
         for (const std::vector<int>& sample_frames : frames)
-          for (int f : sample_frames) {
-            Eigen::Quaterniond r(track.motion[f].linear());
-            if (r.w() < 0) r.coeffs() = -r.coeffs();
-            q[f] = 2 * std::atan2(r.vec().dot(j.axis), r.w());
-          }
+          for (int f : sample_frames) q[f] = twist_about(track.motion[f], j.axis);
       }
     }
     // A slide the part's own track found along a direction its shape barely
