@@ -110,6 +110,7 @@ ojson joint_report(const JointEstimate& j) {
   if (j.has_grip_track) {
     r["from_grip"] = fits(j.from_grip);
     r["grip_visibility"] = j.grip_visibility;
+    if (!j.grip_frames_left_out.empty()) r["grip_frames_left_out"] = j.grip_frames_left_out;
   }
   r["hand_samples"] = j.hand_samples;
   if (j.has_part_track) r["part_visibility"] = j.part_visibility;
@@ -287,9 +288,24 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
 
   t0 = Clock::now();
   std::vector<JointEstimate> joints(obs.parts.size());
+  {
+    // Two parts at a time, as their tracks were: a held part's grip is
+    // typed once per sample left out (estimate_joint), which costs.
+    std::atomic<size_t> next{0};
+    auto worker = [&]() {
+      for (size_t k = next++; k < moving_parts.size(); k = next++) {
+        const int p = moving_parts[k];
+        if (tracks[p])
+          joints[p] = estimate_joint(*tracks[p], hand_points[p], operated(p), grips[p].get(), joint_named(obs.parts[p].name));
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < std::max(1, options.observe.threads); ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+  }
   for (int p : moving_parts) {
     if (!tracks[p]) continue;
-    joints[p] = estimate_joint(*tracks[p], hand_points[p], operated(p), grips[p].get(), joint_named(obs.parts[p].name));
     if (joints[p].assumed_moving)
       diags.warning("E1059", meta_file, 0, 0, "/parts/" + obs.parts[p].name,
                     "part '" + obs.parts[p].name + "': the hand held it, but neither its own track nor the hand's shows it moving; it is taken as " +

@@ -95,6 +95,10 @@ struct JointEstimate {
   // holding it turned plainly too: the grip's hinge (axis, origin) is the
   // joint's, the part's twist about it its position (a lever's).
   bool hinge_from_grip = false;
+  // The frames of the grip's one typing sample its type was read without
+  // (a trimmed fit: its registration spun for those frames), left out of
+  // its frame-by-frame fits too; empty where none was.
+  std::vector<int> grip_frames_left_out;
   int hand_samples = 0;
   // How much of the part track's motion its shape can show (visibility()).
   double part_visibility = 0;
