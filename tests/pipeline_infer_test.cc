@@ -499,6 +499,44 @@ TEST(PipelineInfer, AFlatButtonsDriftAcrossItsFaceIsNotItsSlide) {
   EXPECT_NEAR(std::abs(j.q[50] - j.q[80]), 0.004, 0.0015);  // pressed against at rest
 }
 
+// The same flat shape as a slider's knob, slid 6 cm along its face (x)
+// and back twice: its shape barely shows that slide either, and alone it
+// is taken for a drift. The hand holding it slides with it, 6 cm, further
+// than any press: the slide is the motion.
+TEST(PipelineInfer, ASliderTheHandSlidesAlongIsNotADrift) {
+  const int frames = 150;
+  auto slid = [](int f) {
+    for (int start : {30, 90}) {
+      const int u = f - start;
+      if (u >= 0 && u < 10) return 0.06 * u / 10.0;
+      if (u >= 10 && u < 20) return 0.06;
+      if (u >= 20 && u < 30) return 0.06 * (30 - u) / 10.0;
+    }
+    return 0.0;
+  };
+  PartTrack t = track_of(flat_button());
+  std::mt19937 rng(17);
+  std::normal_distribution<double> g(0, 1);
+  for (int f = 0; f < frames; ++f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Vector3d(slid(f) + 0.002 * g(rng), 0.0003 * g(rng), 0.0003 * g(rng));
+    add_flat_pose(&t, T);
+  }
+  t.frames_tracked = frames;
+  const JointEstimate alone = estimate_joint(t, no_hand(frames));
+  ASSERT_EQ(alone.type, "prismatic");
+  EXPECT_TRUE(alone.plain_slide);
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) hand[f] = Vector3d(slid(f), -0.01, 0) + 0.007 * Vector3d(g(rng), g(rng), g(rng));
+  const JointEstimate slider = estimate_joint(t, hand, true);
+  ASSERT_EQ(slider.type, "prismatic");
+  EXPECT_EQ(slider.source, "part");
+  EXPECT_FALSE(slider.plain_slide);
+  EXPECT_TRUE(slider.hand_slides_along);
+  EXPECT_GT(std::abs(slider.axis.dot(Vector3d::UnitX())), 0.99) << slider.axis.transpose();
+  EXPECT_NEAR(slider.range_hi - slider.range_lo, 0.06, 0.01);
+}
+
 TEST(PipelineInfer, ADoorsPosesGiveItsHinge) {
   const int frames = 90;
   const PartTrack t = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 1);

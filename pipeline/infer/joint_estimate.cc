@@ -537,6 +537,9 @@ Track with_slides_only_along(Track t, const Eigen::Matrix3d& P) {
 constexpr double kPressNoises = 3;
 constexpr double kMinPress = 0.0015;  // m
 constexpr double kMaxPress = 0.02;    // m
+// The hand's slide along a part's: within 30 degrees (its contacts are
+// noisy by about 7 mm, and the slide's direction from them with it).
+constexpr double kHandAlongSlide = 0.866;
 constexpr double kPressBack = 0.35;
 constexpr int kPressRuns = 2;
 bool held_press(const std::vector<double>& along) {
@@ -1030,11 +1033,17 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     // kept: the typing saw the part slide). A drawer's pull shows plainly on
     // its front face (visibility about 1) and is never refitted.
     // (A slide is never a swing past a slip: `samples` are the part's own
-    // poses, frame by frame, as they are.)
+    // poses, frame by frame, as they are.) A slide the hand's own track
+    // follows, further than any press goes, is the motion itself (s0044's
+    // fan slider, 7 cm along its hood: the hand's contacts slid 6 cm along
+    // the part's slide; a button's press moves the hand a few millimetres).
+    const bool barely_shown_slide = !grip_decides && type == "prismatic" && track.model.has_normals() &&
+                                    visibility(track.model, "prismatic", a.axis, a.origin) < kSlipVisibility;
+    j.hand_slides_along = barely_shown_slide && j.has_hand_track && j.from_hand.type == "prismatic" &&
+                          std::abs(j.from_hand.axis.dot(a.axis)) >= kHandAlongSlide &&
+                          j.from_hand.range_hi - j.from_hand.range_lo > kMaxPress;
     Eigen::Vector3d shown;
-    if (!grip_decides && type == "prismatic" && track.model.has_normals() &&
-        visibility(track.model, "prismatic", a.axis, a.origin) < kSlipVisibility &&
-        best_shown_slide(track.model, &shown)) {
+    if (barely_shown_slide && !j.hand_slides_along && best_shown_slide(track.model, &shown)) {
       const Articulation b =
           estimate_articulation_as(with_slides_only_along(samples, shown * shown.transpose()), "prismatic");
       if (b.prismatic.valid && visibility(track.model, "prismatic", b.axis, b.origin) >= kSlipVisibility) {

@@ -84,6 +84,10 @@ struct JointEstimate {
   // its shape shows best (a button's press under its face's in-plane
   // drift).
   bool plain_slide = false;
+  // A slide along a direction the part's shape barely shows that the
+  // hand's own track follows further than a press goes: kept as the motion,
+  // not taken for a slip (a slider's knob).
+  bool hand_slides_along = false;
   // The grip decided, and the hand's contacts showed the part moving too:
   // revolute or prismatic by the two tracks' BICs together.
   bool grip_with_hand = false;
