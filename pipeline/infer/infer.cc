@@ -291,7 +291,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   std::vector<JointEstimate> joints(obs.parts.size());
   {
     // Two parts at a time, as their tracks were: a held part's grip is
-    // typed once per sample left out (estimate_joint), which costs.
+    // typed again with each of a few samples left out (estimate_joint),
+    // about 60 ms a time.
     std::atomic<size_t> next{0};
     auto worker = [&]() {
       for (size_t k = next++; k < moving_parts.size(); k = next++) {

@@ -563,7 +563,6 @@ bool held_press(const std::vector<double>& along) {
   return false;
 }
 
-
 // BIC gain of the trimmed track's best type over the whole track's type,
 // trimmed too, that overturns it: 10, "very strong" on Kass and
 // Raftery's scale (s0049's lever's grip: 83; s0045's knob, s0051's paddle
@@ -614,9 +613,8 @@ std::vector<size_t> least_like_neighbours(const Track& track, size_t count) {
 // The grip's track typed with one sample left out: each model may drop the
 // one sample it explains worst among the few least like their neighbours
 // (a trimmed likelihood: every model scored on the same n - 1 samples, so
-// their BICs compare), and where the best of
-// those is another type than the whole track's, it is typed without that
-// sample. A hand's registration can slip about its own near-symmetry for a
+// their BICs compare), and where the best of those is another type than
+// the whole track's, it is typed without that sample. A hand's registration can slip about its own near-symmetry for a
 // few frames on end (s0049's grip spun 50 degrees about the hand's long
 // axis for five frames while the lever turned 10 about its hinge): one
 // bin's worth, which no spike test sees and which, kept, makes every hinge
@@ -639,8 +637,9 @@ Articulation estimate_articulation_trimmed(const Track& track, int* dropped) {
       if (fits[m]->valid && fits[m]->bic < best_bic[m]) best_bic[m] = fits[m]->bic, best_drop[m] = static_cast<int>(i);
   }
   const int m = static_cast<int>(std::min_element(best_bic, best_bic + 3) - best_bic);
-  const int kept = static_cast<int>(std::find(kTypes, kTypes + 3, whole.type) - kTypes);
-  if (best_drop[m] < 0 || m == kept || (kept < 3 && best_bic[kept] - best_bic[m] < kTrimEvidence)) return whole;
+  const int whole_type = static_cast<int>(std::find(kTypes, kTypes + 3, whole.type) - kTypes);
+  if (best_drop[m] < 0 || m == whole_type || (whole_type < 3 && best_bic[whole_type] - best_bic[m] < kTrimEvidence))
+    return whole;
   *dropped = best_drop[m];
   return estimate_articulation(without_sample(track, static_cast<size_t>(best_drop[m])));
 }
