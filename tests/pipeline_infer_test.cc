@@ -982,13 +982,9 @@ TEST(PipelineInfer, ALeversPressShowsThroughRegistrationNoiseAndFlips) {
   EXPECT_NEAR(j.range_hi - j.range_lo, 0.35, 0.1);
 }
 
-TEST(PipelineInfer, AHeldLeversHingeIsTheGripsWhereItsOwnRegistrationTilts) {
-  // A lever's bar is nearly round about its length, and its registration
-  // turns about that length as the lever swings (here by half the swing):
-  // the hinge its poses fit tilts 27 degrees. The hand holding it turns
-  // with it about the true hinge (y), and its grip shows that plainly.
-  const int frames = 140;
-  std::mt19937 rng(73);
+// A lever pressed about y (press()) whose registration also turns about its
+// bar (x) by half the swing, with 0.01 rad and 0.5 mm of noise.
+PartTrack tilting_lever(int frames, std::mt19937& rng) {
   std::normal_distribution<double> g(0, 1);
   PartTrack t = track_of(lever());
   for (int f = 0; f < frames; ++f) {
@@ -1003,6 +999,18 @@ TEST(PipelineInfer, AHeldLeversHingeIsTheGripsWhereItsOwnRegistrationTilts) {
   }
   t.frames_tracked = frames;
   with_information(&t);
+  return t;
+}
+
+TEST(PipelineInfer, AHeldLeversHingeIsTheGripsWhereItsOwnRegistrationTilts) {
+  // A lever's bar is nearly round about its length, and its registration
+  // turns about that length as the lever swings (here by half the swing):
+  // the hinge its poses fit tilts 27 degrees. The hand holding it turns
+  // with it about the true hinge (y), and its grip shows that plainly.
+  const int frames = 140;
+  std::mt19937 rng(73);
+  std::normal_distribution<double> g(0, 1);
+  PartTrack t = tilting_lever(frames, rng);
   const PartTrack held = grip(frames, 20, 130, [&](int f) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.linear() = Eigen::AngleAxisd(press(f), Vector3d::UnitY()).toRotationMatrix();
@@ -1036,19 +1044,7 @@ TEST(PipelineInfer, AGripsRegistrationSpunForOneBinDoesNotHideItsHinge) {
   const int frames = 140;
   std::mt19937 rng(79);
   std::normal_distribution<double> g(0, 1);
-  PartTrack t = track_of(lever());
-  for (int f = 0; f < frames; ++f) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(press(f), Vector3d::UnitY()).toRotationMatrix() *
-                 Eigen::AngleAxisd(0.5 * press(f), Vector3d::UnitX()).toRotationMatrix() *
-                 Eigen::AngleAxisd(0.01, Vector3d(g(rng), g(rng), g(rng)).normalized()).toRotationMatrix();
-    T.translation() = 0.0005 * Vector3d(g(rng), g(rng), g(rng));
-    t.motion.push_back(T);
-    t.tracked.push_back(true);
-    t.rmse.push_back(0.001), t.inliers.push_back(1), t.conditioning.push_back(1);
-  }
-  t.frames_tracked = frames;
-  with_information(&t);
+  PartTrack t = tilting_lever(frames, rng);
   const Vector3d grip_centre(0.02, 0, 0.06);
   const PartTrack held = grip(frames, 20, 130, [&](int f) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
