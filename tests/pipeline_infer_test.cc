@@ -551,6 +551,28 @@ TEST(PipelineInfer, ADoorsPosesGiveItsHinge) {
   EXPECT_NEAR(j.q.front(), 0.0, 1e-9);
 }
 
+// A door out of view for a while: q bridges the frames unseen (its poses'
+// consumers need one in every frame); q_seen leaves them unknown (the
+// templates' geometry signal: it may have opened and shut unseen).
+TEST(PipelineInfer, AnUnseenDoorsPositionIsBridgedButNotSeen) {
+  const int frames = 90;
+  PartTrack t = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 1);
+  for (int f = 30; f < 50; ++f) t.tracked[f] = false;
+  t.frames_tracked = frames - 20;
+  const JointEstimate j = estimate_joint(t, no_hand(frames));
+  ASSERT_EQ(j.type, "revolute");
+  ASSERT_EQ(static_cast<int>(j.q.size()), frames);
+  ASSERT_EQ(static_cast<int>(j.q_seen.size()), frames);
+  for (int f = 0; f < frames; ++f) {
+    EXPECT_TRUE(std::isfinite(j.q[f])) << f;
+    if (f >= 30 && f < 50) {
+      EXPECT_TRUE(std::isnan(j.q_seen[f])) << f;
+    } else {
+      EXPECT_EQ(j.q_seen[f], j.q[f]) << f;
+    }
+  }
+}
+
 // The axis points the way the part was actuated: a door swung 1.2 rad the
 // negative way about +z and let go a little past its rest (a coin toss
 // for a sign taken from the first sample to the last) is a hinge about -z

@@ -559,6 +559,64 @@ TEST(TemplatesFit, TheReceptorStateTheEffectorFollowsIsKept) {
   EXPECT_EQ(from_part[0].mapping["type"], reference[0].mapping["type"]);
 }
 
+TEST(TemplatesFit, AnEffectorsJointIsReadOnlyWhereItWasSeen) {
+  // s0021's lid opened a second time out of view; its q, bridged between
+  // the shut lid's last frame before and first after (fill_gaps), said it
+  // stayed shut while the pedal went down, and a counter fitted better
+  // than the switch. The geometry signal reads the frames its track
+  // measured (q_seen). The committed ram made a switch: on while the
+  // button is past half its travel, pressed twice, hidden the second time
+  // (its recording's pixels stay where they were).
+  efc::test::TruthInput t;
+  std::string why;
+  ASSERT_TRUE(efc::test::load_truth_input(kCumulativeGeometry, &t, &why)) << why;
+  ASSERT_EQ(t.input.functions.size(), 1u);
+  efc::pipeline::PartObservation *rec = nullptr, *eff = nullptr;
+  for (efc::pipeline::PartObservation& p : t.input.parts) {
+    if (p.name == t.input.functions[0].receptor) rec = &p;
+    if (p.name == t.input.functions[0].effector) eff = &p;
+  }
+  ASSERT_TRUE(rec && eff);
+  const size_t n = rec->q.size();
+  ASSERT_EQ(n, 30u);
+  ASSERT_EQ(eff->q.size(), n);
+  const double travel = rec->range_hi - rec->range_lo, lift = eff->range_hi - eff->range_lo;
+  ASSERT_GT(travel, 0);
+  ASSERT_GT(lift, 0);
+  // Pressed over frames 3 to 10 and 17 to 24, held down for two frames.
+  const auto pressed = [](int f, int from) {
+    const double x = f - from;
+    return x < 0 || x > 8 ? 0.0 : x < 3 ? x / 3 : x <= 5 ? 1.0 : (8 - x) / 3;
+  };
+  std::vector<double> shut_through_the_gap(n), seen(n);
+  for (size_t f = 0; f < n; ++f) {
+    const double press = std::max(pressed(static_cast<int>(f), 3), pressed(static_cast<int>(f), 17));
+    rec->q[f] = rec->range_lo + travel * press;
+    const double lid = press >= 0.5 ? eff->range_lo + lift : eff->range_lo;
+    const bool hidden = f >= 15 && f <= 27;
+    seen[f] = hidden ? std::nan("") : lid;
+    shut_through_the_gap[f] = hidden ? eff->range_lo : lid;
+  }
+  rec->q_hand.clear();
+  eff->q = shut_through_the_gap;  // (the parts' poses stay the recording's: its pixels are where they were)
+
+  efc::Diagnostics diags;
+  const auto bridged = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+
+  eff->q_seen = seen;
+  const auto got = efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0].effect["type"], "geometry");
+  EXPECT_EQ(got[0].mapping["type"], "binary");
+  EXPECT_FALSE(got[0].mapping.value("latching", false));
+  // Bridged, the second press's frames said shut: a switch that opened the
+  // ram half as far explained them best.
+  ASSERT_EQ(bridged.size(), 1u);
+  EXPECT_LT(bridged[0].effect["range"][1].get<double>(), 0.6 * lift);
+  EXPECT_EQ(got[0].report["hypotheses"]["geometry"]["signal"]["observed"], 17);
+  EXPECT_NEAR(got[0].effect["range"][1].get<double>(), eff->range_lo + lift, 0.02 * lift);
+}
+
 TEST(TemplatesVlm, ParsesRepliesAndRejectsGarbage) {
   using efc::pipeline::parse_vlm_reply;
   auto wrap = [](const std::string& content) {

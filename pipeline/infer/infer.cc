@@ -397,6 +397,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     if (po.joint_type != "fixed") {
       po.q = a.joint.q;
       po.q_hand = a.joint.q_hand;
+      po.q_seen = a.joint.q_seen;
       for (int f = 0; f < n && f < static_cast<int>(po.q.size()); ++f) po.motion[f] = joint_motion(a.joint, po.q[f]);
     } else if (a.joint.turn_taken_for_slip && tracks[p]) {
       // Fixed, but its registration places it in each frame better than the

@@ -1108,6 +1108,8 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   }
   for (double& v : q)
     if (!std::isnan(v)) v -= q_first;
+  std::vector<char> measured(q.size());
+  for (size_t f = 0; f < q.size(); ++f) measured[f] = !std::isnan(q[f]);
   fill_gaps(&q);
   // The positions seen, in order (the sign and the range below read their
   // percentiles: a few frames of tracker noise do not decide them).
@@ -1145,6 +1147,9 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.type = "fixed";
     q.clear();
   }
+  j.q_seen = q;
+  for (size_t f = 0; f < j.q_seen.size(); ++f)
+    if (!measured[f]) j.q_seen[f] = kNaN;
   j.q = std::move(q);
   return j;
 }

@@ -35,6 +35,10 @@ struct JointEstimate {
   // Per frame: the joint position (q = 0 in the first frame the part was
   // seen), NaN before it was; empty for fixed.
   std::vector<double> q;
+  // q where a track measured it, NaN in the frames fill_gaps bridged (the
+  // part unseen, or its pose a spike). An effector's geometry signal: a
+  // lid that opens while out of view is not shut there.
+  std::vector<double> q_seen;
   // Where q came from the part's own track or the grip's and the hand held
   // the part: the same from the hand's contacts alone (the chosen axis; q =
   // 0 at the first contact, held between grasps), NaN before. Empty

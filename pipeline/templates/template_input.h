@@ -49,6 +49,10 @@ struct PartObservation {
   // button's track may not show its motion while the hand's grip does: the
   // templates try both as s_R and keep the one the effector follows.
   std::vector<double> q_hand;
+  // q where the part's track measured it, NaN where it was bridged between
+  // measurements (empty: q is all measured). An effector's geometry signal
+  // reads it: a lid opened out of view did not stay shut.
+  std::vector<double> q_seen;
   std::vector<Eigen::Isometry3d> motion;        // per frame: the part's pose in the object frame relative to q = 0 (identity for fixed)
   Eigen::AlignedBox3d bounds;                   // object frame, at q = 0
   std::vector<Eigen::Vector3d> surface;         // fused surface points, object frame, at q = 0 (may be empty)

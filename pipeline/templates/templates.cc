@@ -192,16 +192,18 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
 
     const std::vector<double> prior = mapping_prior(rec.joint_type == "continuous");
     // Each effect hypothesis's signal, once for both candidates for s_R:
-    // geometry the effector's own joint position (where it moves), the
-    // others from its pixels; a moving effector's own pixels less what its
-    // pose explains (pose_shading_removed). Empty: no such signal.
+    // geometry the effector's own joint position (where it moves; only in
+    // the frames its track measured it: a lid opened out of view is not
+    // shut there), the others from its pixels; a moving effector's own
+    // pixels less what its pose explains (pose_shading_removed, on the
+    // pose in every frame). Empty: no such signal.
     const auto frames_long = [&](std::vector<double> v) {
       v.resize(meta.frames, std::numeric_limits<double>::quiet_NaN());
       return v;
     };
     std::vector<std::vector<double>> signal(5);
     std::vector<double> surround;
-    if (effector_movable && !eff->q.empty()) signal[0] = frames_long(eff->q);
+    if (effector_movable && !eff->q.empty()) signal[0] = frames_long(eff->q_seen.empty() ? eff->q : eff->q_seen);
     const bool effector_moves =
         !signal[0].empty() && spread(signal[0]) >= 1e-3 * std::max(eff->range_hi - eff->range_lo, 1e-3);
     if (sig) {
@@ -210,8 +212,10 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
       signal[3] = frames_long(binned_root(sig->droplets));
       signal[4] = frames_long(binned_root(sig->motes));
       surround = frames_long(sig->surround);
-      if (effector_moves)
-        for (std::vector<double>* y : {&signal[1], &signal[2], &surround}) *y = pose_shading_removed(*y, signal[0]);
+      if (effector_moves) {
+        const std::vector<double> pose = frames_long(eff->q);
+        for (std::vector<double>* y : {&signal[1], &signal[2], &surround}) *y = pose_shading_removed(*y, pose);
+      }
     }
     // Every effect's signal fitted against one s_R.
     auto fit_hypotheses = [&](const std::vector<double>& s) {
