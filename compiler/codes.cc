@@ -470,10 +470,12 @@ const std::vector<CodeInfo>& all_codes() {
        "error means a defect of efc infer on this recording. Nothing was written.\n"
        "Fix: report it with the sequence; the notes show what the compiler said."},
       {"E1055", "a function is left out of the inferred spec",
-       "A function needs a receptor that moves and both its parts reconstructed. When\n"
-       "the recording never shows the receptor moving, efc infer does not invent a\n"
-       "joint for it: the part is fixed and the function is left out.\n"
-       "Fix: record the receptor being operated, in view of the camera."},
+       "A function needs a receptor that moves and was reconstructed. When the\n"
+       "recording never shows the receptor moving, efc infer does not invent a joint\n"
+       "for it: the part is fixed and the function is left out. So is one whose\n"
+       "effector was never reconstructed where its effect is the effector's own motion\n"
+       "(geometry); other effects keep a stand-in (E1066).\n"
+       "Fix: record the receptor being operated, and the effector, in view of the camera."},
       {"E1056", "no static part named",
        "efc infer registers the camera on the parts with the role 'object' (the body).\n"
        "Without one, the part seen most is taken as the static body.\n"
@@ -496,6 +498,13 @@ const std::vector<CodeInfo>& all_codes() {
        "report.json: type_from_name), else the likelier of revolute and prismatic by\n"
        "BIC. A part no hand held stays fixed when nothing shows it moving.\n"
        "Fix: film the part from where its motion shows, not hidden by the hand."},
+      {"E1066", "a function's effector was never seen: a sphere stands in for it",
+       "The effector could not be reconstructed (E1058: no depth readings inside its\n"
+       "mask), but its function's template was read (from the names where nothing\n"
+       "responded, E1062). Rather than leave the function out, the spec gives the\n"
+       "effector a stand-in: a sphere of 1 cm radius in the middle of the body's\n"
+       "bounding box, fixed to the body. Its place and shape are guesses.\n"
+       "Fix: film the effector, or move its stand-in in the spec by hand."},
       {"E1010", "the spec cannot be filmed by efc synth",
        "efc synth writes one mask folder per part and one for the hand (masks/hand/),\n"
        "so a part named 'hand' would share the hand's folder.\n"

@@ -2,15 +2,21 @@
 // visibility of a motion on a surface, the joint chosen from a part's
 // registered poses (also when some registrations flipped the part) or from
 // the hand alone, a still part staying fixed, which part the hand holds, the
-// mean of rigid transforms and spec names.
+// mean of rigid transforms, spec names and the spec assembled (an unseen
+// effector's stand-in).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <random>
 #include <set>
 
+#include <unistd.h>
+
+#include "compiler/core/load.h"
 #include "pipeline/infer/ego_motion.h"
 #include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/hand_contacts.h"
@@ -1231,6 +1237,67 @@ std::vector<Vector3d> rim_held(int frames, double sweep, unsigned seed) {
     hand[f] = Vector3d(0.06 * std::cos(q), 0.06 * std::sin(q), 0.02) + Vector3d(g(rng), g(rng), g(rng));
   }
   return hand;
+}
+
+// A function whose effector was never seen keeps its template: the
+// effector stands in as a sphere fixed to the root (once, however many
+// functions it serves), and the spec checks. A geometry effect needs the
+// effector's own motion: left out; so is an effector that was not merely
+// unseen but is not a part at all.
+TEST(PipelineInfer, AnUnseenEffectorStandsInAsASphere) {
+  namespace fs = std::filesystem;
+  std::vector<AssembledPart> parts(2);
+  parts[0].name = "body", parts[0].role = "object", parts[0].root = true, parts[0].mesh = "meshes/body.obj";
+  parts[1].name = "switch", parts[1].role = "receptor", parts[1].mesh = "meshes/switch.obj", parts[1].parent = "body";
+  parts[1].joint.type = "prismatic";
+  parts[1].joint.axis = Vector3d::UnitX();
+  parts[1].joint.range_hi = 0.01;
+  auto function = [](const std::string& name, const std::string& effector, const std::string& effect) {
+    InferredFunction f;
+    f.name = name, f.receptor = "switch", f.effector = effector;
+    f.mapping = {{"type", "binary"}, {"threshold", 0.005}};
+    f.effect = {{"type", effect}, {"range", {0.0, effect == "geometry" ? 0.5 : 800.0}}};
+    return f;
+  };
+  const std::vector<InferredFunction> functions = {function("light", "bulb", "illumination"),
+                                                   function("warm", "bulb", "temperature"),
+                                                   function("lift", "ram", "geometry"),
+                                                   function("glow", "nowhere", "illumination")};
+  StandIns unseen;
+  unseen.names = {"bulb", "ram"};
+  unseen.centre = Vector3d(0.1, 0.2, 0.3);
+  efc::Diagnostics diags;
+  const nlohmann::ordered_json spec =
+      assemble_spec("lamp", "", parts, functions, unseen, Eigen::Isometry3d::Identity(), "meta.json", diags);
+
+  ASSERT_EQ(spec["parts"].size(), 3u);
+  const auto& bulb = spec["parts"][2];
+  EXPECT_EQ(bulb["name"], "bulb");
+  EXPECT_EQ(bulb["geometry"]["sphere"]["radius"], kStandInRadius);
+  EXPECT_EQ(bulb["geometry"]["sphere"]["center"], nlohmann::ordered_json::array({0.1, 0.2, 0.3}));
+  EXPECT_EQ(bulb["joint"]["type"], "fixed");
+  EXPECT_EQ(bulb["joint"]["parent"], "body");
+  ASSERT_EQ(spec["functions"].size(), 2u);
+  EXPECT_EQ(spec["functions"][0]["name"], "light");
+  EXPECT_EQ(spec["functions"][1]["name"], "warm");
+  int stand_ins = 0, left_out = 0;
+  for (const efc::Diagnostic& d : diags.items()) stand_ins += d.code == "E1066", left_out += d.code == "E1055";
+  EXPECT_EQ(stand_ins, 1);
+  EXPECT_EQ(left_out, 2);  // lift (geometry) and glow (no such part)
+
+  // It checks as efc check would (the meshes two small tetrahedra).
+  const fs::path dir = fs::temp_directory_path() / ("efc-stand-in-" + std::to_string(::getpid()));
+  fs::create_directories(dir / "meshes");
+  for (const char* mesh : {"body", "switch"}) {
+    std::ofstream obj(dir / "meshes" / (std::string(mesh) + ".obj"));
+    obj << "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  }
+  std::ofstream(dir / "spec.json") << spec.dump(2);
+  efc::Diagnostics check;
+  EXPECT_TRUE(efc::load_spec((dir / "spec.json").string(), efc::LoadOptions{}, check).has_value());
+  for (const efc::Diagnostic& d : check.items())
+    EXPECT_NE(d.severity, efc::Severity::Error) << d.code << " " << d.message;
+  fs::remove_all(dir);
 }
 
 TEST(PipelineInfer, ANameSettlesANearTieAndNothingMore) {

@@ -417,8 +417,12 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   std::string name = sequence.dir();
   while (!name.empty() && name.back() == '/') name.pop_back();
   name = name.substr(name.find_last_of('/') + 1);
+  StandIns unseen;
+  unseen.centre = recon[root].bounds.center();
+  for (size_t p = 0; p < obs.parts.size(); ++p)
+    if (!recon[p].ok) unseen.names.push_back(spec_name(obs.parts[p].name));
   result->spec = assemble_spec(name, "Inferred by efc infer from the recording " + name + ".", assembled, functions,
-                               object_to_world, meta_file, diags);
+                               unseen, object_to_world, meta_file, diags);
   result->meshes.clear();
   for (size_t k = 0; k < assembled.size(); ++k)
     result->meshes.push_back({assembled[k].mesh, recon[part_of_assembled[k]].mesh});

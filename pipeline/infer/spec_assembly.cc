@@ -3,7 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <map>
+#include <set>
 
 namespace efc::pipeline {
 
@@ -43,7 +45,8 @@ std::string spec_role(const std::string& meta_role, bool root) {
 
 ojson assemble_spec(const std::string& object_name, const std::string& description,
                     const std::vector<AssembledPart>& parts, const std::vector<InferredFunction>& functions,
-                    const Eigen::Isometry3d& object_to_world, const std::string& meta_file, Diagnostics& diags) {
+                    const StandIns& unseen, const Eigen::Isometry3d& object_to_world, const std::string& meta_file,
+                    Diagnostics& diags) {
   ojson spec;
   spec["efc"] = 1;
   spec["name"] = spec_name(object_name);
@@ -69,12 +72,35 @@ ojson assemble_spec(const std::string& object_name, const std::string& descripti
     }
     jparts.push_back(jp);
   }
-  spec["parts"] = jparts;
+  spec["parts"] = ojson::array();  // (here in the key order; filled below, with the stand-ins the functions need)
+  const std::string root = parts.empty() ? std::string() : parts.front().name;
+  std::set<std::string> stood_in;
   ojson jfunctions = ojson::array();
   for (const InferredFunction& f : functions) {
     auto r = by_name.find(f.receptor);
     auto e = by_name.find(f.effector);
-    if (r == by_name.end() || e == by_name.end()) {
+    const bool unseen_effector = e == by_name.end() && !root.empty() &&
+                                 std::count(unseen.names.begin(), unseen.names.end(), f.effector) > 0;
+    const bool receptor_moves = r != by_name.end() && !r->second->root && r->second->joint.type != "fixed";
+    // An effector never seen, of a function otherwise kept, stands in as a
+    // sphere (once); one whose effect is its own motion cannot (a fixed
+    // stand-in does not move) and is left out below with the others.
+    if (unseen_effector && receptor_moves && !f.mapping.is_null() && !f.effect.is_null() &&
+        f.effect.value("type", "") != "geometry") {
+      if (stood_in.insert(f.effector).second) {
+        diags.warning("E1066", meta_file, 0, 0, "/parts/" + f.effector,
+                      "function '" + f.name + "': its effector '" + f.effector +
+                          "' was never seen; a sphere of " + std::to_string(static_cast<int>(kStandInRadius * 1000)) +
+                          " mm in the middle of '" + root + "' stands in for it",
+                      "film the effector, or move its stand-in in the spec");
+        ojson jp;
+        jp["name"] = f.effector;
+        jp["role"] = "effector";
+        jp["geometry"] = {{"sphere", {{"radius", kStandInRadius}, {"center", vec(unseen.centre)}}}};
+        jp["joint"] = {{"type", "fixed"}, {"parent", root}};
+        jparts.push_back(jp);
+      }
+    } else if (r == by_name.end() || e == by_name.end()) {
       diags.warning("E1055", meta_file, 0, 0, "/functions",
                     "function '" + f.name + "' is left out: its " +
                         (r == by_name.end() ? "receptor '" + f.receptor : "effector '" + f.effector) +
@@ -97,6 +123,7 @@ ojson assemble_spec(const std::string& object_name, const std::string& descripti
     jf["effect"] = ojson::parse(f.effect.dump());
     jfunctions.push_back(jf);
   }
+  spec["parts"] = jparts;
   spec["functions"] = jfunctions;
   ojson m = ojson::array();
   const Eigen::Matrix4d M = object_to_world.matrix();

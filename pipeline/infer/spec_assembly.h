@@ -4,7 +4,10 @@
 // are left to the compiler (the mesh's volume at its default density).
 // Functions whose receptor was found not to move cannot be compiled (a
 // receptor must be movable): they are left out with a warning rather than
-// given an invented joint.
+// given an invented joint. A function whose effector was never seen (so
+// never reconstructed) keeps its template (read from the names): the
+// effector stands in as a small sphere fixed to the root, with a warning
+// (E1066), unless its effect moves it (geometry: it is left out).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -28,13 +31,23 @@ struct AssembledPart {
   std::string parent;     // the root's name
 };
 
+// Parts that could not be reconstructed (E1058): the effectors among them
+// that a kept function needs stand in as a sphere of kStandInRadius at
+// `centre` (object frame, q = 0; the root's middle: where it is, nothing
+// says), fixed to the root.
+struct StandIns {
+  std::vector<std::string> names;  // valid spec names
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+};
+constexpr double kStandInRadius = 0.01;  // m
+
 // A name the spec accepts (^[A-Za-z_][A-Za-z0-9_]{0,63}$) made from any text.
 std::string spec_name(const std::string& text);
 
 nlohmann::ordered_json assemble_spec(const std::string& object_name, const std::string& description,
                                      const std::vector<AssembledPart>& parts,
                                      const std::vector<InferredFunction>& functions,
-                                     const Eigen::Isometry3d& object_to_world, const std::string& meta_file,
-                                     Diagnostics& diags);
+                                     const StandIns& unseen, const Eigen::Isometry3d& object_to_world,
+                                     const std::string& meta_file, Diagnostics& diags);
 
 }  // namespace efc::pipeline
