@@ -496,7 +496,9 @@ const std::vector<CodeInfo>& all_codes() {
        "(report.json: assumed_moving): the one its name names where it names one (a\n"
        "button, a key, a slider slides; a knob, a dial, a lever, a rocker turns;\n"
        "report.json: type_from_name), else the likelier of revolute and prismatic by\n"
-       "BIC. A part no hand held stays fixed when nothing shows it moving.\n"
+       "BIC. A part no hand held stays fixed when nothing shows it moving. In a\n"
+       "recording without the hand (no hands.txt), a receptor's role says someone\n"
+       "operates it: it moves by the same assumption, its geometry from its own track.\n"
        "Fix: film the part from where its motion shows, not hidden by the hand."},
       {"E1066", "a function's effector was never seen: a sphere stands in for it",
        "The effector could not be reconstructed (E1058: no depth readings inside its\n"

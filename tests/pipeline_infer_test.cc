@@ -699,6 +699,26 @@ TEST(PipelineInfer, AReceptorTheHandHeldMovedEvenWhenNothingShowsIt) {
   EXPECT_EQ(alone.type, "fixed");
   EXPECT_FALSE(alone.assumed_moving);
   EXPECT_FALSE(alone.type_from_name);
+  // A recording without the hand (no hands.txt) cannot say it was not
+  // held: a receptor (operated) moves by the same assumption, its geometry
+  // from its own track (its registration's noise turns it a little, as
+  // any registration's does); a part no one operates stays fixed.
+  PartTrack jittered = t;
+  std::normal_distribution<double> tilt(0, 0.005);
+  for (Eigen::Isometry3d& m : jittered.motion) {
+    const Vector3d w(tilt(rng), tilt(rng), tilt(rng));
+    m.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix() * m.linear();
+  }
+  const JointEstimate unrecorded = estimate_joint(jittered, no_hand(frames), true, nullptr, "revolute", false);
+  EXPECT_TRUE(unrecorded.assumed_moving);
+  EXPECT_TRUE(unrecorded.type_from_name);
+  EXPECT_NE(unrecorded.type, "fixed");
+  EXPECT_EQ(unrecorded.source, "part");
+  EXPECT_LE(unrecorded.confidence, 0.5);
+  EXPECT_EQ(static_cast<int>(unrecorded.q.size()), frames);
+  const JointEstimate effector = estimate_joint(jittered, no_hand(frames), false, nullptr, "revolute", false);
+  EXPECT_EQ(effector.type, "fixed");
+  EXPECT_FALSE(effector.assumed_moving);
 }
 
 TEST(PipelineInfer, APartsNameNamesItsJoint) {

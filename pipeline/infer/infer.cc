@@ -298,7 +298,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
       for (size_t k = next++; k < moving_parts.size(); k = next++) {
         const int p = moving_parts[k];
         if (tracks[p])
-          joints[p] = estimate_joint(*tracks[p], hand_points[p], operated(p), grips[p].get(), joint_named(obs.parts[p].name));
+          joints[p] = estimate_joint(*tracks[p], hand_points[p], operated(p), grips[p].get(),
+                                     joint_named(obs.parts[p].name), !obs.hands.empty());
       }
     };
     std::vector<std::thread> pool;
@@ -310,7 +311,9 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     if (!tracks[p]) continue;
     if (joints[p].assumed_moving)
       diags.warning("E1059", meta_file, 0, 0, "/parts/" + obs.parts[p].name,
-                    "part '" + obs.parts[p].name + "': the hand held it, but neither its own track nor the hand's shows it moving; it is taken as " +
+                    "part '" + obs.parts[p].name +
+                        (obs.hands.empty() ? "': a receptor (the recording has no hands.txt), but its own track does not show it moving; it is taken as "
+                                           : "': the hand held it, but neither its own track nor the hand's shows it moving; it is taken as ") +
                         joints[p].type + (joints[p].type_from_name ? " (as its name says)" : " (the likelier moving joint)") +
                         ", with low confidence",
                     "film the part from where its motion shows, not hidden by the hand");

@@ -657,7 +657,7 @@ Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
 }
 
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points, bool operated,
-                             const PartTrack* grip, const std::string& named) {
+                             const PartTrack* grip, const std::string& named, bool hand_recorded) {
   JointEstimate j;
   const int n = static_cast<int>(track.motion.size());
   // The part's own track: the pose of its model's centroid per tracked
@@ -903,22 +903,31 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // the other moving one halved as its confidence. Its geometry comes from
   // the track that favours that model most over fixed. A part no hand held
   // still comes out fixed when nothing shows it moving, whatever its name.
+  // So does a receptor in a recording without the hand (no hands.txt),
+  // where nothing says whether it was held: its function needs it movable
+  // (a receptor's role: someone operates it), so it moves by the same
+  // assumption, its geometry from its own track.
+  const bool held_unrecorded = operated && !hand_recorded && j.has_part_track && part_reliable;
   bool geometry_from_part = part_decides;
-  if (type == "fixed" && j.has_hand_track && std::isfinite(std::min(j.bic_revolute, j.bic_prismatic))) {
-    type = j.bic_revolute <= j.bic_prismatic ? "revolute" : "prismatic";
-    if (named == "revolute" || named == "prismatic") {
-      j.type_from_name = true;
-      type = named;
-    }
-    j.assumed_moving = true;
-    const double other = type == "revolute" ? j.bic_prismatic : j.bic_revolute;
-    const double mine = type == "revolute" ? j.bic_revolute : j.bic_prismatic;
-    j.confidence = 0.5 / (1 + std::exp(-0.5 * (other - mine)));
+  if (type == "fixed" && (j.has_hand_track || held_unrecorded) &&
+      std::isfinite(std::min(j.bic_revolute, j.bic_prismatic))) {
+    std::string assumed = j.bic_revolute <= j.bic_prismatic ? "revolute" : "prismatic";
+    if (named == "revolute" || named == "prismatic") assumed = named;
+    // How much better than fixed a track's fit of the assumed model is.
     auto gain = [&](const Articulation& a) {
-      const ModelFit& m = type == "revolute" ? a.revolute : a.prismatic;
+      const ModelFit& m = assumed == "revolute" ? a.revolute : a.prismatic;
       return a.fixed.valid && m.valid ? a.fixed.bic - m.bic : -std::numeric_limits<double>::infinity();
     };
-    geometry_from_part = j.has_part_track && part_reliable && gain(j.from_part) > gain(j.from_hand);
+    // Without the hand's track, the part's own must give the geometry.
+    if (j.has_hand_track || std::isfinite(gain(j.from_part))) {
+      type = assumed;
+      j.type_from_name = named == assumed;
+      j.assumed_moving = true;
+      const double other = type == "revolute" ? j.bic_prismatic : j.bic_revolute;
+      const double mine = type == "revolute" ? j.bic_revolute : j.bic_prismatic;
+      j.confidence = 0.5 / (1 + std::exp(-0.5 * (other - mine)));
+      geometry_from_part = j.has_part_track && part_reliable && gain(j.from_part) > gain(j.from_hand);
+    }
   }
   if (type == "fixed") {
     j.source = j.has_part_track ? "part" : "hand";

@@ -189,7 +189,10 @@ bool near_symmetry_axis(const Cloud& model, Eigen::Vector3d* axis);
 // whose slipping registration hides its press, and it is the prior
 // (kNamePriorOdds) between a turn and a slide wherever likelihoods choose
 // (JointEstimate::type_from_name); a motion a track plainly shows outweighs it.
+// `hand_recorded`: false for a recording without the hand (no hands.txt),
+// where an operated part's motion has only its own track to show it.
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points,
-                             bool operated = true, const PartTrack* grip = nullptr, const std::string& named = "");
+                             bool operated = true, const PartTrack* grip = nullptr, const std::string& named = "",
+                             bool hand_recorded = true);
 
 }  // namespace efc::pipeline
