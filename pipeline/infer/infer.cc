@@ -76,6 +76,7 @@ ojson joint_report(const JointEstimate& j) {
   if (j.hinge_from_grip) r["hinge_from_grip"] = true;
   if (j.plain_slide) r["plain_slide"] = true;
   if (j.hand_slides_along) r["hand_slides_along"] = true;
+  if (j.axis_from_part) r["axis_from_part"] = true;
   if (j.type != "fixed") {
     r["axis"] = vec(j.axis);
     r["origin"] = vec(j.origin);

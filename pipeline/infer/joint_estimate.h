@@ -92,6 +92,10 @@ struct JointEstimate {
   // hand's own track follows further than a press goes: kept as the motion,
   // not taken for a slip (a slider's knob).
   bool hand_slides_along = false;
+  // The hand's contacts alone showed the part moving (its own track no
+  // motion, no grip): they gave its position frame by frame, and the part's
+  // own track, fitted with that joint, its axis (and its name its type).
+  bool axis_from_part = false;
   // The grip decided, and the hand's contacts showed the part moving too:
   // revolute or prismatic by the two tracks' BICs together.
   bool grip_with_hand = false;
