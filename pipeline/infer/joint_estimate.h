@@ -94,7 +94,7 @@ struct JointEstimate {
   bool hand_slides_along = false;
   // The hand's contacts alone showed the part moving (its own track no
   // motion, no grip): they gave its position frame by frame, and the part's
-  // own track, fitted with that joint, its axis (and its name its type).
+  // own track, fitted with that joint, its axis.
   bool axis_from_part = false;
   // The grip decided, and the hand's contacts showed the part moving too:
   // revolute or prismatic by the two tracks' BICs together.
