@@ -73,6 +73,18 @@ PartTrack track_of(const Cloud& model) {
   return t;
 }
 
+// Two strokes of `height` starting at frames `first` and `second`: each
+// ramps up over `ramp` frames, holds `hold`, ramps back; 0 elsewhere.
+double two_strokes(int f, int first, int second, double height, int ramp, int hold) {
+  for (int start : {first, second}) {
+    const int u = f - start;
+    if (u >= 0 && u < ramp) return height * u / ramp;
+    if (u >= ramp && u < ramp + hold) return height;
+    if (u >= ramp + hold && u < 2 * ramp + hold) return height * (2 * ramp + hold - u) / ramp;
+  }
+  return 0.0;
+}
+
 // A part track whose motion is a turn of q(f) about `axis` through `origin`.
 PartTrack turning(const Cloud& model, const Vector3d& axis, const Vector3d& origin, double amplitude, int frames,
                   double noise, unsigned seed) {
@@ -511,15 +523,7 @@ TEST(PipelineInfer, AFlatButtonsDriftAcrossItsFaceIsNotItsSlide) {
 // than any press: the slide is the motion.
 TEST(PipelineInfer, ASliderTheHandSlidesAlongIsNotADrift) {
   const int frames = 150;
-  auto slid = [](int f) {
-    for (int start : {30, 90}) {
-      const int u = f - start;
-      if (u >= 0 && u < 10) return 0.06 * u / 10.0;
-      if (u >= 10 && u < 20) return 0.06;
-      if (u >= 20 && u < 30) return 0.06 * (30 - u) / 10.0;
-    }
-    return 0.0;
-  };
+  auto slid = [](int f) { return two_strokes(f, 30, 90, 0.06, 10, 10); };
   PartTrack t = track_of(flat_button());
   std::mt19937 rng(17);
   std::normal_distribution<double> g(0, 1);
@@ -975,15 +979,7 @@ Cloud lever() {
 
 // Two presses of 0.35 rad about y through the origin, each ramping up over
 // 8 frames, held 6, and back; rest elsewhere.
-double press(int f) {
-  for (int start : {40, 90}) {
-    const int u = f - start;
-    if (u >= 0 && u < 8) return 0.35 * u / 8.0;
-    if (u >= 8 && u < 14) return 0.35;
-    if (u >= 14 && u < 22) return 0.35 * (22 - u) / 8.0;
-  }
-  return 0;
-}
+double press(int f) { return two_strokes(f, 40, 90, 0.35, 8, 6); }
 
 TEST(PipelineInfer, ALeversPressShowsThroughRegistrationNoiseAndFlips) {
   // Registration of a small part: 2 degrees of rotation noise per frame,
