@@ -114,6 +114,7 @@ ojson joint_report(const JointEstimate& j) {
     r["grip_visibility"] = j.grip_visibility;
     if (!j.grip_frames_left_out.empty()) r["grip_frames_left_out"] = j.grip_frames_left_out;
   }
+  if (!j.frames_off_axis.empty()) r["frames_off_axis"] = j.frames_off_axis;
   r["hand_samples"] = j.hand_samples;
   if (j.has_part_track) r["part_visibility"] = j.part_visibility;
   return r;

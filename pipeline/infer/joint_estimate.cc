@@ -585,6 +585,49 @@ Track without_sample(const Track& track, size_t drop) {
   return t;
 }
 
+// turned_about_another_axis()'s thresholds (joint_estimate.h).
+constexpr double kNamedTurn = 0.3;   // rad
+constexpr double kSharedAxis = 0.26;  // rad, 15 degrees
+constexpr double kOffAxis = 0.52;     // rad, 30 degrees
+constexpr int kMinShared = 4;
+constexpr double kMaxOffShare = 0.34;
+constexpr int kMaxOff = 5;
+// How far (rad) frames off a hinge's consensus must bend its fit to be left
+// out of it (estimate_joint).
+constexpr double kBentHinge = 0.05;
+
+}  // namespace
+
+std::vector<size_t> turned_about_another_axis(const Track& track) {
+  std::vector<size_t> large;
+  std::vector<Eigen::Vector3d> axes;
+  for (size_t k = 0; k < track.rotations.size(); ++k) {
+    const Eigen::Vector3d v = rotation_vector(track.rotations[k]);
+    if (v.norm() < kNamedTurn) continue;
+    large.push_back(k);
+    axes.push_back(v.normalized());
+  }
+  // Angles between axes, sign-blind (a turn back is about the same line).
+  auto apart = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::acos(std::min(1.0, std::abs(a.dot(b))));
+  };
+  int best = -1, best_shared = 0;
+  for (size_t i = 0; i < axes.size(); ++i) {
+    int shared = 0;
+    for (const Eigen::Vector3d& b : axes) shared += apart(axes[i], b) <= kSharedAxis;
+    if (shared > best_shared) best_shared = shared, best = static_cast<int>(i);
+  }
+  if (best < 0 || best_shared < kMinShared) return {};
+  std::vector<size_t> off;
+  for (size_t i = 0; i < axes.size(); ++i)
+    if (apart(axes[best], axes[i]) > kOffAxis) off.push_back(large[i]);
+  if (static_cast<int>(off.size()) > kMaxOff || static_cast<double>(off.size()) > kMaxOffShare * static_cast<double>(large.size()))
+    return {};
+  return off;
+}
+
+namespace {
+
 // The `count` samples of a pose track least like both their neighbours in
 // time: the smaller of the two steps to them, a degree of turn counted as
 // a millimetre of shift (the tracker's floors). A registration that spins
@@ -1015,8 +1058,31 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
                      j.swing_past_slip || j.press_past_slip,
                      j.swing_past_slip ? &symmetry : j.press_past_slip ? &spin_axis : nullptr);
     // A press past a slip: along the spin's axis alone, as it was typed.
-    const Articulation a = estimate_articulation_as(
+    Articulation a = estimate_articulation_as(
         j.press_past_slip ? with_slides_only_along(samples, spin_axis * spin_axis.transpose()) : samples, type);
+    // A hinge's frames turned about another axis than the rest
+    // (turned_about_another_axis()) are left out where they bend it (by
+    // kBentHinge): unknown there, as unseen. Where they do not, their
+    // positions about the hinge stand (a lever's frame or two off the
+    // consensus still measures how far it was pushed).
+    if (type == "revolute" && !j.swing_past_slip && !j.press_past_slip) {
+      const std::vector<size_t> off = turned_about_another_axis(samples);
+      if (!off.empty()) {
+        Track kept = samples;
+        std::vector<std::vector<int>> kept_frames = frames;
+        for (auto k = off.rbegin(); k != off.rend(); ++k) {
+          kept = without_sample(kept, *k);
+          kept_frames.erase(kept_frames.begin() + static_cast<std::ptrdiff_t>(*k));
+        }
+        const Articulation straight = estimate_articulation_as(kept, type);
+        if (std::acos(std::min(1.0, std::abs(straight.axis.normalized().dot(a.axis.normalized())))) > kBentHinge) {
+          for (size_t k : off) j.frames_off_axis.insert(j.frames_off_axis.end(), frames[k].begin(), frames[k].end());
+          std::sort(j.frames_off_axis.begin(), j.frames_off_axis.end());
+          a = straight;
+          frames = std::move(kept_frames);
+        }
+      }
+    }
     j.source = grip_decides ? "grip" : "part";
     j.type = type;
     j.axis = a.axis;

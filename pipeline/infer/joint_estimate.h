@@ -111,6 +111,9 @@ struct JointEstimate {
   // (a trimmed fit: its registration spun for those frames), left out of
   // its frame-by-frame fits too; empty where none was.
   std::vector<int> grip_frames_left_out;
+  // The part's frames its hinge's fit left out: turned about another axis
+  // than the rest of its large turns (a misregistration a few frames long).
+  std::vector<int> frames_off_axis;
   int hand_samples = 0;
   // How much of the part track's motion its shape can show (visibility()).
   double part_visibility = 0;
@@ -177,6 +180,21 @@ Track part_samples(const PartTrack& track, const Eigen::Vector3d& centroid, int 
 // symmetry axis of a round shade, a knob, a button. False for a shape every
 // turn of which shows (a door, a lever, a box).
 bool near_symmetry_axis(const Cloud& model, Eigen::Vector3d* axis);
+
+// The samples of a pose track turned about another axis than most of its
+// large turns are, ascending: a wide, flat door misregistered near the peak
+// of its swing for a few frames on end (s0056's, turned 1.4 rad about an
+// axis 80 degrees off its hinge for four frames) passes the spike test,
+// which looks for lone frames, and bends the hinge fitted through it by 50
+// degrees; estimate_joint leaves them out of a hinge's frame-by-frame fit
+// where they bend it. A turn of at least 0.3 rad names its own axis; the
+// axis shared (within 15 degrees) by the most of them is the consensus, and
+// a sample turned at least 0.3 rad about an axis more than 30 degrees off
+// it is off. None where fewer than 4 large turns share an axis, or where
+// more than 5 samples (a sixth of a second) or more than a third of the
+// large turns are off: then it is no brief misregistration but a part
+// whose turns share no one axis (a round knob slipping about its own).
+std::vector<size_t> turned_about_another_axis(const Track& track);
 
 // hand_points[f]: the hand's contact point in the object frame in the frames
 // it holds this part (NaN elsewhere). `operated`: someone may move the part
