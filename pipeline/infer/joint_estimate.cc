@@ -573,16 +573,25 @@ constexpr double kTrimEvidence = 10.0;
 // again (about 60 ms for a grip's 18 samples).
 constexpr size_t kTrimCandidates = 3;
 
-// `track` less its sample `drop`.
-Track without_sample(const Track& track, size_t drop) {
+// `track` less the samples in `drops` (any order).
+Track without_samples(const Track& track, const std::vector<size_t>& drops) {
   Track t;
   for (size_t k = 0; k < track.size(); ++k) {
-    if (k == drop) continue;
+    if (std::find(drops.begin(), drops.end(), k) != drops.end()) continue;
     t.positions.push_back(track.positions[k]);
     if (track.has_rotations()) t.rotations.push_back(track.rotations[k]);
     if (track.has_information()) t.information.push_back(track.information[k]);
   }
   return t;
+}
+
+// `track` less its sample `drop`.
+Track without_sample(const Track& track, size_t drop) { return without_samples(track, {drop}); }
+
+// The angle (rad) between two lines through unit directions, sign-blind (a
+// turn back is about the same line).
+double lines_apart(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::acos(std::min(1.0, std::abs(a.dot(b))));
 }
 
 // turned_about_another_axis()'s thresholds (joint_estimate.h).
@@ -607,20 +616,16 @@ std::vector<size_t> turned_about_another_axis(const Track& track) {
     large.push_back(k);
     axes.push_back(v.normalized());
   }
-  // Angles between axes, sign-blind (a turn back is about the same line).
-  auto apart = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    return std::acos(std::min(1.0, std::abs(a.dot(b))));
-  };
   int best = -1, best_shared = 0;
   for (size_t i = 0; i < axes.size(); ++i) {
     int shared = 0;
-    for (const Eigen::Vector3d& b : axes) shared += apart(axes[i], b) <= kSharedAxis;
+    for (const Eigen::Vector3d& b : axes) shared += lines_apart(axes[i], b) <= kSharedAxis;
     if (shared > best_shared) best_shared = shared, best = static_cast<int>(i);
   }
   if (best < 0 || best_shared < kMinShared) return {};
   std::vector<size_t> off;
   for (size_t i = 0; i < axes.size(); ++i)
-    if (apart(axes[best], axes[i]) > kOffAxis) off.push_back(large[i]);
+    if (lines_apart(axes[best], axes[i]) > kOffAxis) off.push_back(large[i]);
   if (static_cast<int>(off.size()) > kMaxOff || static_cast<double>(off.size()) > kMaxOffShare * static_cast<double>(large.size()))
     return {};
   return off;
@@ -1068,18 +1073,13 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     if (type == "revolute" && !j.swing_past_slip && !j.press_past_slip) {
       const std::vector<size_t> off = turned_about_another_axis(samples);
       if (!off.empty()) {
-        Track kept = samples;
-        std::vector<std::vector<int>> kept_frames = frames;
-        for (auto k = off.rbegin(); k != off.rend(); ++k) {
-          kept = without_sample(kept, *k);
-          kept_frames.erase(kept_frames.begin() + static_cast<std::ptrdiff_t>(*k));
-        }
-        const Articulation straight = estimate_articulation_as(kept, type);
-        if (std::acos(std::min(1.0, std::abs(straight.axis.normalized().dot(a.axis.normalized())))) > kBentHinge) {
+        const Articulation straight = estimate_articulation_as(without_samples(samples, off), type);
+        if (lines_apart(straight.axis.normalized(), a.axis.normalized()) > kBentHinge) {
           for (size_t k : off) j.frames_off_axis.insert(j.frames_off_axis.end(), frames[k].begin(), frames[k].end());
           std::sort(j.frames_off_axis.begin(), j.frames_off_axis.end());
+          // off is ascending: erased from the back, the indices before stay.
+          for (auto k = off.rbegin(); k != off.rend(); ++k) frames.erase(frames.begin() + static_cast<std::ptrdiff_t>(*k));
           a = straight;
-          frames = std::move(kept_frames);
         }
       }
     }
