@@ -28,6 +28,7 @@
 #include "efc_profile.h"
 #include "harness/play.h"
 #include "spec_formula.h"
+#include "tests/process_temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace efc;
@@ -77,8 +78,7 @@ class Programs {
 
  private:
   Programs() {
-    root = fs::temp_directory_path() / ("efc-bullet-test-" + std::to_string(getpid()));
-    fs::remove_all(root);
+    root = temp_.path();
     fs::create_directories(root);
     const Backend* bullet = find_backend("bullet");
     if (!bullet) {
@@ -111,6 +111,8 @@ class Programs {
     flags_ = flags;
   }
   std::string flags_;
+  // Every member is made before the constructor runs: the folder exists by then.
+  const efc_test::ProcessTempDir temp_{"efc-bullet-test-"};
 
  public:
   // Builds one example's program the first time a test needs it: under CTest

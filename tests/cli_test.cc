@@ -12,6 +12,7 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+#include "tests/process_temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -29,7 +30,8 @@ std::string slurp(const fs::path& p) {
 }
 
 fs::path scratch(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("efc-cli-" + std::to_string(getpid())) / name;
+  static const efc_test::ProcessTempDir root("efc-cli-");
+  fs::path p = root.path() / name;
   fs::remove_all(p);
   fs::create_directories(p.parent_path());
   return p;

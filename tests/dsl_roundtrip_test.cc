@@ -30,6 +30,7 @@
 #include "compiler/frontend/dsl.h"
 #include "compiler/frontend/json_reader.h"
 #include "tests/spec_generator.h"
+#include "tests/process_temp_dir.h"
 
 namespace {
 
@@ -469,7 +470,8 @@ void check_all(const char* what, const std::function<std::string(const json&)>& 
 using Result = efc_test::CliResult;
 
 fs::path scratch(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("efc-dsl-rt-" + std::to_string(getpid())) / name;
+  static const efc_test::ProcessTempDir root("efc-dsl-rt-");
+  fs::path p = root.path() / name;
   fs::remove_all(p);
   fs::create_directories(p.parent_path());
   return p;

@@ -12,6 +12,7 @@
 
 #include "compiler/core/load.h"
 #include "harness/play.h"
+#include "tests/process_temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace efc;
@@ -33,7 +34,8 @@ constexpr const char* kSpec = R"({"efc": 1, "name": "threshold_at_initial",
    "mapping": {"type": "binary", "threshold": 0.5}, "effect": {"type": "illumination", "range": [0, 100]}}]})";
 
 Object load() {
-  const fs::path dir = fs::temp_directory_path() / ("efc-profile-start-" + std::to_string(getpid()));
+  static const efc_test::ProcessTempDir root("efc-profile-start-");
+  const fs::path& dir = root.path();
   fs::create_directories(dir);
   const fs::path spec = dir / "spec.json";
   std::ofstream(spec) << kSpec;

@@ -28,6 +28,7 @@
 #include "compiler/core/load.h"
 #include "compiler/ir.h"
 #include "runtime/mujoco/efc_mujoco.h"
+#include "tests/process_temp_dir.h"
 
 
 namespace efc_test {
@@ -51,8 +52,8 @@ inline void install_mujoco_handlers() {
 
 inline std::string temp_dir(const std::string& tag) {
   namespace fs = std::filesystem;
-  const fs::path p = fs::temp_directory_path() /
-                     ("efc_mujoco_" + tag + "_" + std::to_string(::getpid()));
+  static const efc_test::ProcessTempDir root("efc_mujoco_");
+  const fs::path p = root.path() / tag;
   fs::remove_all(p);
   fs::create_directories(p);
   return p.string();
