@@ -106,6 +106,43 @@ TEST(TemplatesFit, EachMappingIsRecoveredFromNoisySignals) {
 }
 
 // Pure noise keeps the null model: no mapping earns its parameters.
+// After the receptor's last known position nothing says where it is: a
+// grip lost on the way back from a press (the hand letting go of a lever)
+// left s_R held mid-travel while the light went off. Those frames are not
+// scored, and the switch comes back; held, they would say it stayed on.
+TEST(TemplatesFit, FramesAfterTheReceptorsLastKnownPositionAreNotScored) {
+  const std::vector<double> s = presses(2, 120, 0, 1);
+  MappingModel truth;
+  truth.type = "binary";
+  truth.threshold = 0.5;
+  const MappingSeries measured = series_for(truth, s, 0.15, 7);
+  constexpr int kLost = 100;  // on the way back, at two thirds of the travel
+  ASSERT_GT(s[kLost], 0.6);
+  MappingSeries unknown = measured, held = measured;
+  for (int f = kLost + 1; f < 120; ++f) {
+    unknown.s_R[f] = std::nan("");
+    held.s_R[f] = s[kLost];
+  }
+  const auto prior = efc::pipeline::mapping_prior(false);
+  const auto all = fit_mappings(measured, prior);
+  const auto got = fit_mappings(unknown, prior);
+  const auto was = fit_mappings(held, prior);
+  ASSERT_GE(all.best_index, 0);
+  ASSERT_GE(got.best_index, 0);
+  ASSERT_GE(was.best_index, 0);
+  EXPECT_EQ(fitted_type(all), "binary");
+  EXPECT_EQ(all.n, 120);
+  EXPECT_EQ(got.n, kLost + 1);
+  EXPECT_EQ(was.n, 120);
+  // Left out, the rest fits as well as the whole recording measured does
+  // (the switch and a ramp as steep tie on so few frames of each press);
+  // held, no model fits the nineteen frames where the light is off.
+  const double sigma = all.best[all.best_index].sigma;
+  EXPECT_LT(got.best[got.best_index].sigma, 1.1 * sigma);
+  EXPECT_NE(fitted_type(got), "cumulative");
+  EXPECT_GT(was.best[was.best_index].sigma, 1.4 * sigma);
+}
+
 TEST(TemplatesFit, NoiseAloneKeepsTheNull) {
   const std::vector<double> s = sweep(150, 0, 2);
   MappingSeries S;

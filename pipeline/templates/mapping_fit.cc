@@ -407,8 +407,13 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
   P.s.resize(N);
   P.y.assign(series.y.begin(), series.y.begin() + N);
   P.ok.assign(N, 0);
+  // After s_R's last known frame nothing says where the receptor is: those
+  // frames' y are not scored (the lags still run through them, held).
+  size_t known_until = 0;
+  for (size_t i = 0; i < N; ++i)
+    if (std::isfinite(series.s_R[i])) known_until = i + 1;
   double ylo = kInf, yhi = -kInf;
-  for (size_t i = 0; i < N; ++i) {
+  for (size_t i = 0; i < known_until; ++i) {
     if (!std::isfinite(P.y[i])) continue;
     P.ok[i] = 1;
     ++P.n;

@@ -54,7 +54,8 @@ struct MappingModel {
 };
 
 struct MappingSeries {
-  std::vector<double> s_R;  // per frame; NaN = unknown (interpolated)
+  std::vector<double> s_R;  // per frame; NaN = unknown: interpolated between known frames, held before
+                            // the first; after the last, y is not scored (nothing says where s_R is)
   std::vector<double> y;    // per frame; NaN = not observed (skipped)
   double dt = 1.0 / 30;
   double r_lo = 0, r_hi = 1;  // receptor range (continuous: 0, 2 pi)

@@ -103,6 +103,36 @@ MappingModel default_model(int type, double r_lo, double r_hi) {
   return m;
 }
 
+// A receptor last measured away from rest (further than this share of its
+// range from q = 0) is not taken to have stayed there afterwards.
+constexpr double kRestShare = 0.1;
+
+// s after its last measurement (the last finite value of `seen`): held
+// where that was at rest, unknown (NaN) otherwise. A track lost while the
+// part still moved (the grip gone with the hand letting go of a lever on
+// its way back) would hold a position the part left, and the effect's
+// return to off would read as a ramp; a part left at rest stays there.
+std::vector<double> unknown_after_last_seen(std::vector<double> s, const std::vector<double>& seen, double r_lo,
+                                            double r_hi) {
+  int last = -1;
+  for (int f = static_cast<int>(std::min(s.size(), seen.size())) - 1; f >= 0; --f)
+    if (std::isfinite(seen[f]) && std::isfinite(s[f])) {
+      last = f;
+      break;
+    }
+  if (last < 0) return s;
+  const bool at_rest = std::abs(s[last]) <= kRestShare * (r_hi - r_lo);
+  for (size_t f = last + 1; f < s.size(); ++f) s[f] = at_rest ? s[last] : std::numeric_limits<double>::quiet_NaN();
+  return s;
+}
+
+// s with the frames after its last finite value holding that value.
+std::vector<double> held_after_last(std::vector<double> s) {
+  for (size_t f = 1; f < s.size(); ++f)
+    if (!std::isfinite(s[f]) && std::isfinite(s[f - 1])) s[f] = s[f - 1];
+  return s;
+}
+
 struct Hypothesis {
   bool has_signal = false;
   MappingFitResult fit;
@@ -276,7 +306,12 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
       for (const Hypothesis& h : H) best = std::max(best, h.evidence);
       return best;
     };
-    std::vector<Hypothesis> H = fit_hypotheses(s_R);
+    // The fits leave out the frames after the receptor was last measured,
+    // unless it was at rest then (unknown_after_last_seen; the fits hold a
+    // position that is NaN at the start, where nobody has touched it yet).
+    // The hand's contacts are held after the hand leaves, as before.
+    std::vector<Hypothesis> H =
+        fit_hypotheses(rec.q_seen.empty() ? s_R : unknown_after_last_seen(s_R, frames_long(rec.q_seen), r_lo, r_hi));
     // The hand's s_R where it moved: kept when some effect follows it
     // very strongly better (by kMinEvidence) than any follows the part's:
     // the part's own track measures the joint, the hand's contacts only
@@ -288,7 +323,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     std::string s_R_source = "part";
     double evidence_part = strongest(H), evidence_hand = 0;
     if (hand_moved) {
-      std::vector<Hypothesis> H_hand = fit_hypotheses(s_R_hand);
+      std::vector<Hypothesis> H_hand = fit_hypotheses(held_after_last(s_R_hand));
       evidence_hand = strongest(H_hand);
       if (evidence_hand - evidence_part >= kMinEvidence) H = std::move(H_hand), s_R = s_R_hand, s_R_source = "hand";
     }
