@@ -126,10 +126,13 @@ std::vector<double> unknown_after_last_seen(std::vector<double> s, const std::ve
   return s;
 }
 
-// s with the frames after its last finite value holding that value.
+// s with the frames after its last finite value holding that value (the
+// gaps before it are left to the fits, which interpolate them).
 std::vector<double> held_after_last(std::vector<double> s) {
-  for (size_t f = 1; f < s.size(); ++f)
-    if (!std::isfinite(s[f]) && std::isfinite(s[f - 1])) s[f] = s[f - 1];
+  int last = static_cast<int>(s.size()) - 1;
+  while (last >= 0 && !std::isfinite(s[last])) --last;
+  if (last < 0) return s;
+  for (size_t f = last + 1; f < s.size(); ++f) s[f] = s[last];
   return s;
 }
 
