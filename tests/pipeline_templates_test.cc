@@ -105,11 +105,10 @@ TEST(TemplatesFit, EachMappingIsRecoveredFromNoisySignals) {
     }
 }
 
-// Pure noise keeps the null model: no mapping earns its parameters.
 // After the receptor's last known position nothing says where it is: a
 // grip lost on the way back from a press (the hand letting go of a lever)
 // left s_R held mid-travel while the light went off. Those frames are not
-// scored, and the switch comes back; held, they would say it stayed on.
+// scored; held, they would say it stayed on.
 TEST(TemplatesFit, FramesAfterTheReceptorsLastKnownPositionAreNotScored) {
   const std::vector<double> s = presses(2, 120, 0, 1);
   MappingModel truth;
@@ -143,6 +142,7 @@ TEST(TemplatesFit, FramesAfterTheReceptorsLastKnownPositionAreNotScored) {
   EXPECT_GT(was.best[was.best_index].sigma, 1.4 * sigma);
 }
 
+// Pure noise keeps the null model: no mapping earns its parameters.
 TEST(TemplatesFit, NoiseAloneKeepsTheNull) {
   const std::vector<double> s = sweep(150, 0, 2);
   MappingSeries S;

@@ -107,33 +107,30 @@ MappingModel default_model(int type, double r_lo, double r_hi) {
 // range from q = 0) is not taken to have stayed there afterwards.
 constexpr double kRestShare = 0.1;
 
-// s after its last measurement (the last finite value of `seen`): held
-// where that was at rest, unknown (NaN) otherwise. A track lost while the
-// part still moved (the grip gone with the hand letting go of a lever on
-// its way back) would hold a position the part left, and the effect's
-// return to off would read as a ramp; a part left at rest stays there.
-std::vector<double> unknown_after_last_seen(std::vector<double> s, const std::vector<double>& seen, double r_lo,
-                                            double r_hi) {
-  int last = -1;
-  for (int f = static_cast<int>(std::min(s.size(), seen.size())) - 1; f >= 0; --f)
-    if (std::isfinite(seen[f]) && std::isfinite(s[f])) {
-      last = f;
-      break;
-    }
-  if (last < 0) return s;
-  const bool at_rest = std::abs(s[last]) <= kRestShare * (r_hi - r_lo);
-  for (size_t f = last + 1; f < s.size(); ++f) s[f] = at_rest ? s[last] : std::numeric_limits<double>::quiet_NaN();
+// The last frame where v is finite; -1 when none is.
+int last_finite(const std::vector<double>& v) {
+  int last = static_cast<int>(v.size()) - 1;
+  while (last >= 0 && !std::isfinite(v[last])) --last;
+  return last;
+}
+
+// s after frame `last`: held at s[last], or unknown (NaN).
+std::vector<double> after_last(std::vector<double> s, int last, bool hold) {
+  if (last < 0 || last >= static_cast<int>(s.size())) return s;
+  for (size_t f = last + 1; f < s.size(); ++f) s[f] = hold ? s[last] : std::numeric_limits<double>::quiet_NaN();
   return s;
 }
 
-// s with the frames after its last finite value holding that value (the
-// gaps before it are left to the fits, which interpolate them).
-std::vector<double> held_after_last(std::vector<double> s) {
-  int last = static_cast<int>(s.size()) - 1;
-  while (last >= 0 && !std::isfinite(s[last])) --last;
-  if (last < 0) return s;
-  for (size_t f = last + 1; f < s.size(); ++f) s[f] = s[last];
-  return s;
+// s after its last measurement (the last finite value of `seen`, the same
+// length): held where that was at rest, unknown otherwise. A track lost
+// while the part still moved (the grip gone with the hand letting go of a
+// lever on its way back) would hold a position the part left, and the
+// effect's return to off would read as a ramp; a part left at rest stays.
+std::vector<double> unknown_after_last_seen(const std::vector<double>& s, const std::vector<double>& seen, double r_lo,
+                                            double r_hi) {
+  const int last = last_finite(seen);
+  if (last < 0 || !std::isfinite(s[last])) return s;
+  return after_last(s, last, std::abs(s[last]) <= kRestShare * (r_hi - r_lo));
 }
 
 struct Hypothesis {
@@ -326,7 +323,7 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
     std::string s_R_source = "part";
     double evidence_part = strongest(H), evidence_hand = 0;
     if (hand_moved) {
-      std::vector<Hypothesis> H_hand = fit_hypotheses(held_after_last(s_R_hand));
+      std::vector<Hypothesis> H_hand = fit_hypotheses(after_last(s_R_hand, last_finite(s_R_hand), true));
       evidence_hand = strongest(H_hand);
       if (evidence_hand - evidence_part >= kMinEvidence) H = std::move(H_hand), s_R = s_R_hand, s_R_source = "hand";
     }
