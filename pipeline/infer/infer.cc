@@ -71,6 +71,7 @@ ojson joint_report(const JointEstimate& j) {
   if (j.turn_taken_for_slip) r["turn_taken_for_slip"] = true;
   if (j.swing_past_slip) r["swing_past_slip"] = true;
   if (j.press_past_slip) r["press_past_slip"] = true;
+  if (j.slide_past_spin) r["slide_past_spin"] = true;
   if (j.grip_with_hand) r["grip_with_hand"] = true;
   if (j.grip_swings_past_slip) r["grip_swings_past_slip"] = true;
   if (j.hinge_from_grip) r["hinge_from_grip"] = true;

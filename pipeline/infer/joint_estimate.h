@@ -83,6 +83,10 @@ struct JointEstimate {
   // round button's) decides, along the turn's axis, the turn taken for the
   // registration's slip.
   bool press_past_slip = false;
+  // A part nobody operates whose track turns about an axis through itself,
+  // and whose poses less that twist slide along the axis: the slide (a
+  // pump's ram rising) decides, the turn taken for its registration's spin.
+  bool slide_past_spin = false;
   // A slide the part's track found along a direction its shape barely
   // shows, taken for a slip and replaced by the slide along the direction
   // its shape shows best (a button's press under its face's in-plane
