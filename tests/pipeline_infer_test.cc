@@ -572,6 +572,55 @@ TEST(PipelineInfer, AFlatButtonsDriftAcrossItsFaceIsNotItsSlide) {
   EXPECT_NEAR(std::abs(j.q[50] - j.q[80]), 0.004, 0.0015);  // pressed against at rest
 }
 
+// A flat button whose sides stand `layers` rows deep behind its face:
+// the deeper they are, the more its slides across the face show.
+Cloud deep_button(int layers) {
+  Cloud button = flat_button();
+  for (int l = 1; l <= layers; ++l)
+    for (int i = -6; i <= 6; ++i)
+      for (int side : {-1, 1}) {
+        button.points.push_back(Vector3d(side * 0.012, -0.002 + 0.001 * l, 0.002 * i));
+        button.normals.push_back(Vector3d(side, 0, 0));
+        button.points.push_back(Vector3d(0.002 * i, -0.002 + 0.001 * l, side * 0.012));
+        button.normals.push_back(Vector3d(0, 0, side));
+      }
+  return button;
+}
+
+TEST(PipelineInfer, ADeepButtonsDriftAcrossItsFaceIsNotItsSlideEither) {
+  // The flat button's drift and presses on a button with sides two rows
+  // deep: its drift across the face shows more than a slip's would, but
+  // less than a generic motion does and less than its press does. A
+  // press goes where the shape shows it best.
+  const int frames = 150;
+  PartTrack t = track_of(deep_button(2));
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g(0, 1);
+  for (int f = 0; f < frames; ++f) {
+    const bool pressed = (f >= 40 && f < 60) || (f >= 100 && f < 120);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Vector3d(0.02 * std::sin(kPi * f / (frames - 1)) + 0.002 * g(rng),
+                               (pressed ? 0.004 : 0.0) + 0.0003 * g(rng), 0.0003 * g(rng));
+    add_flat_pose(&t, T);
+  }
+  t.frames_tracked = frames;
+  const double across = visibility(t.model, "prismatic", Vector3d::UnitX(), Vector3d::Zero());
+  EXPECT_GT(across, kSlipVisibility);
+  EXPECT_LT(across, kPlainTurnVisibility);
+  EXPECT_GT(visibility(t.model, "prismatic", Vector3d::UnitY(), Vector3d::Zero()), across);
+  const JointEstimate j = estimate_joint(t, no_hand(frames));
+  ASSERT_EQ(j.type, "prismatic");
+  EXPECT_TRUE(j.plain_slide);
+  EXPECT_GT(std::abs(j.axis.dot(Vector3d::UnitY())), 0.99) << j.axis.transpose();
+  EXPECT_NEAR(j.range_hi - j.range_lo, 0.004, 0.0015);
+  // A part nobody presses keeps the slide its track shows: a tray's or a
+  // ram's slide along its length shows less than one across it does.
+  const JointEstimate driven = estimate_joint(t, no_hand(frames), false);
+  ASSERT_EQ(driven.type, "prismatic");
+  EXPECT_FALSE(driven.plain_slide);
+  EXPECT_GT(std::abs(driven.axis.dot(Vector3d::UnitX())), 0.9) << driven.axis.transpose();
+}
+
 // The same flat shape as a slider's knob, slid 6 cm along its face (x)
 // and back twice: its shape barely shows that slide either, and alone it
 // is taken for a drift. The hand holding it slides with it, 6 cm, further

@@ -540,6 +540,11 @@ constexpr double kMaxPress = 0.02;    // m
 // The hand's slide along a part's: within 30 degrees (its contacts are
 // noisy by about 7 mm, and the slide's direction from them with it).
 constexpr double kHandAlongSlide = 0.866;
+// A receptor's slide across a shape that shows it less than a generic
+// motion (kPlainTurnVisibility) is taken for a press under a drift only
+// up to this far: a press (kMaxPress) and a registration's wander with it
+// (the suites' buttons: 12 to 35 mm); a slider's knob goes further.
+constexpr double kMaxDriftedPress = 0.04;
 constexpr double kPressBack = 0.35;
 constexpr int kPressRuns = 2;
 // How much better (BIC) a slide along a spinning part's axis must explain
@@ -1154,14 +1159,25 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     // slide for the one the shape shows best, fitted on the track's
     // positions along that direction alone (its face's normal; the type
     // kept: the typing saw the part slide). A drawer's pull shows plainly on
-    // its front face (visibility about 1) and is never refitted.
+    // its front face (visibility about 1) and is never refitted. A
+    // receptor's slide is refitted so wherever its shape shows it less than
+    // a generic motion and less than that best slide, up to
+    // kMaxDriftedPress, its grip's slide too: a small box button's sides
+    // show its drift across its face more than a slip's would (0.5 to 0.9
+    // in the suites), and the hand pressing it drifts with it. Not a slide
+    // along a spin's axis (fitted there already), nor a part nobody presses
+    // (a tray's or a ram's slide along its length shows less than across).
     // (A slide is never a swing past a slip: `samples` are the part's own
     // poses, frame by frame, as they are.) A slide the hand's own track
     // follows, further than any press goes, is the motion itself (s0044's
     // fan slider, 7 cm along its hood: the hand's contacts slid 6 cm along
     // the part's slide; a button's press moves the hand a few millimetres).
-    const bool barely_shown_slide = !grip_decides && type == "prismatic" && track.model.has_normals() &&
-                                    visibility(track.model, "prismatic", a.axis, a.origin) < kSlipVisibility;
+    const double slide_shown = type == "prismatic" && track.model.has_normals()
+                                   ? visibility(track.model, "prismatic", a.axis, a.origin)
+                                   : std::numeric_limits<double>::infinity();
+    const bool barely_shown_slide =
+        (!grip_decides && slide_shown < kSlipVisibility) ||
+        (operated && !along_spin && slide_shown < kPlainTurnVisibility && a.range_hi - a.range_lo <= kMaxDriftedPress);
     j.hand_slides_along = barely_shown_slide && j.has_hand_track && j.from_hand.type == "prismatic" &&
                           std::abs(j.from_hand.axis.dot(a.axis)) >= kHandAlongSlide &&
                           j.from_hand.range_hi - j.from_hand.range_lo > kMaxPress;
@@ -1169,7 +1185,8 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     if (barely_shown_slide && !j.hand_slides_along && best_shown_slide(track.model, &shown)) {
       const Articulation b =
           estimate_articulation_as(with_slides_only_along(samples, shown * shown.transpose()), "prismatic");
-      if (b.prismatic.valid && visibility(track.model, "prismatic", b.axis, b.origin) >= kSlipVisibility) {
+      const double b_shown = visibility(track.model, "prismatic", b.axis, b.origin);
+      if (b.prismatic.valid && b_shown >= kSlipVisibility && b_shown > slide_shown) {
         j.axis = b.axis;
         j.origin = b.origin;
         j.plain_slide = true;
