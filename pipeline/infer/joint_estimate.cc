@@ -540,21 +540,8 @@ constexpr double kMaxPress = 0.02;    // m
 // The hand's slide along a part's: within 30 degrees (its contacts are
 // noisy by about 7 mm, and the slide's direction from them with it).
 constexpr double kHandAlongSlide = 0.866;
-// A receptor's slide across a shape that shows it less than a generic
-// motion (kPlainTurnVisibility) is taken for a press under a drift only
-// up to this far: a press (kMaxPress) and a registration's wander with it
-// (the suites' buttons: 12 to 35 mm); a slider's knob goes further.
-constexpr double kMaxDriftedPress = 0.04;
 constexpr double kPressBack = 0.35;
 constexpr int kPressRuns = 2;
-// How much better (BIC) a slide along a spinning part's axis must explain
-// its poses less the spin than staying put does, for a part nobody
-// operates. The fits take each sample's noise as independent, and a
-// registration's drift along a round part is not: a fixed spout's and a
-// hob lamp's drift earned 40 and 55 in the suites (seed 0's s0033, seed
-// 1's s0037), the rams' rises of a centimetre 144 to 316, a tray's 6 cm
-// slide 715.
-constexpr double kSlidePastSpinEvidence = 100;
 bool held_press(const std::vector<double>& along) {
   if (static_cast<int>(along.size()) < kMinSamples) return false;
   const double rest = median_of(along);
@@ -575,6 +562,21 @@ bool held_press(const std::vector<double>& along) {
   }
   return false;
 }
+
+// A receptor's slide across a shape that shows it less than a generic
+// motion (kPlainTurnVisibility) is taken for a press under a drift only
+// up to this far: a press (kMaxPress) and a registration's wander with it
+// (the suites' buttons: 12 to 35 mm); a slider's knob goes further.
+constexpr double kMaxDriftedPress = 0.04;
+
+// How much better (BIC) a slide along a spinning part's axis must explain
+// its poses less the spin than staying put does, for a part nobody
+// operates. The fits take each sample's noise as independent, and a
+// registration's drift along a round part is not: a fixed spout's and a
+// hob lamp's drift earned 40 and 55 in the suites (seed 0's s0033, seed
+// 1's s0037), the rams' rises of a centimetre 144 to 316, a tray's 6 cm
+// slide 715.
+constexpr double kSlidePastSpinEvidence = 100;
 
 // BIC gain of the trimmed track's best type over the whole track's type,
 // trimmed too, that overturns it: 10, "very strong" on Kass and
@@ -1167,11 +1169,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     // in the suites), and the hand pressing it drifts with it. Not a slide
     // along a spin's axis (fitted there already), nor a part nobody presses
     // (a tray's or a ram's slide along its length shows less than across).
-    // (A slide is never a swing past a slip: `samples` are the part's own
-    // poses, frame by frame, as they are.) A slide the hand's own track
-    // follows, further than any press goes, is the motion itself (s0044's
-    // fan slider, 7 cm along its hood: the hand's contacts slid 6 cm along
-    // the part's slide; a button's press moves the hand a few millimetres).
+    // (A slide is never a swing past a slip: `samples` are the poses of the
+    // track that decided, the part's or its grip's, frame by frame.) A
+    // slide the hand's own track follows, further than any press goes, is
+    // the motion itself (s0044's fan slider, 7 cm along its hood: the
+    // hand's contacts slid 6 cm along the part's slide; a button's press
+    // moves the hand a few millimetres).
     const double slide_shown = type == "prismatic" && track.model.has_normals()
                                    ? visibility(track.model, "prismatic", a.axis, a.origin)
                                    : std::numeric_limits<double>::infinity();
