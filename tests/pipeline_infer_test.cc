@@ -547,9 +547,11 @@ void add_flat_pose(PartTrack* t, const Eigen::Isometry3d& T) {
   t->hessian_scale.push_back(0.01);
 }
 
-TEST(PipelineInfer, AFlatButtonsDriftAcrossItsFaceIsNotItsSlide) {
-  const int frames = 150;
-  PartTrack t = track_of(flat_button());
+// A button (`model`, face normal -y) registered over `frames` frames as
+// it drifts 2 cm across its face (x) and back, pressed 4 mm in along the
+// normal for frames 40-59 and 100-119.
+PartTrack drifting_pressed_button(const Cloud& model, int frames) {
+  PartTrack t = track_of(model);
   std::mt19937 rng(7);
   std::normal_distribution<double> g(0, 1);
   for (int f = 0; f < frames; ++f) {
@@ -560,6 +562,12 @@ TEST(PipelineInfer, AFlatButtonsDriftAcrossItsFaceIsNotItsSlide) {
     add_flat_pose(&t, T);
   }
   t.frames_tracked = frames;
+  return t;
+}
+
+TEST(PipelineInfer, AFlatButtonsDriftAcrossItsFaceIsNotItsSlide) {
+  const int frames = 150;
+  PartTrack t = drifting_pressed_button(flat_button(), frames);
   EXPECT_LT(visibility(t.model, "prismatic", Vector3d::UnitX(), Vector3d::Zero()), kSlipVisibility);
   EXPECT_GT(visibility(t.model, "prismatic", Vector3d::UnitY(), Vector3d::Zero()), kSlipVisibility);
   const JointEstimate j = estimate_joint(t, no_hand(frames));
@@ -593,17 +601,7 @@ TEST(PipelineInfer, ADeepButtonsDriftAcrossItsFaceIsNotItsSlideEither) {
   // less than a generic motion does and less than its press does. A
   // press goes where the shape shows it best.
   const int frames = 150;
-  PartTrack t = track_of(deep_button(2));
-  std::mt19937 rng(7);
-  std::normal_distribution<double> g(0, 1);
-  for (int f = 0; f < frames; ++f) {
-    const bool pressed = (f >= 40 && f < 60) || (f >= 100 && f < 120);
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.translation() = Vector3d(0.02 * std::sin(kPi * f / (frames - 1)) + 0.002 * g(rng),
-                               (pressed ? 0.004 : 0.0) + 0.0003 * g(rng), 0.0003 * g(rng));
-    add_flat_pose(&t, T);
-  }
-  t.frames_tracked = frames;
+  PartTrack t = drifting_pressed_button(deep_button(2), frames);
   const double across = visibility(t.model, "prismatic", Vector3d::UnitX(), Vector3d::Zero());
   EXPECT_GT(across, kSlipVisibility);
   EXPECT_LT(across, kPlainTurnVisibility);
