@@ -22,6 +22,8 @@
 #include "pipeline/templates/template_input.h"
 #include "pipeline/templates/vlm_client.h"
 #include "pipeline_templates_truth.h"
+#include "tests/efc_cli.h"
+#include "tests/process_temp_dir.h"
 
 namespace fs = std::filesystem;
 using efc::pipeline::fit_mappings;
@@ -153,6 +155,30 @@ TEST(TemplatesFit, NoiseAloneKeepsTheNull) {
   for (size_t i = 0; i < s.size(); ++i) S.y.push_back(g(rng));
   const auto r = fit_mappings(S, efc::pipeline::mapping_prior(false));
   EXPECT_LT(r.delta_bic, 10);
+}
+
+// A signal that only rises with its effect (the hot component of a heated
+// part's colour: b_sign_all_models) is not read falling with the receptor
+// under any map: a lamp's colour moving away from red-hot as it lights, or
+// a drift, is not a heater cooled by its knob. Read either way, the same
+// fall is a linear map's.
+TEST(TemplatesFit, ASignalThatOnlyRisesIsNotReadFalling) {
+  const std::vector<double> s = presses(2, 150, 0, 1);
+  MappingSeries S;
+  S.s_R = s;
+  S.allow_lag = false;
+  std::mt19937 rng(6);
+  std::normal_distribution<double> g(0, 0.01);
+  for (double v : s) S.y.push_back(0.5 - 0.2 * v + g(rng));
+  S.b_sign = 1;
+  const auto either = fit_mappings(S, efc::pipeline::mapping_prior(false));
+  EXPECT_EQ(fitted_type(either), "linear");
+  EXPECT_GT(either.delta_bic, 100);
+  S.b_sign_all_models = true;
+  const auto rising = fit_mappings(S, efc::pipeline::mapping_prior(false));
+  EXPECT_LT(rising.delta_bic, 10);
+  for (auto& y : S.y) y = 1.0 - y;  // rising: read as before
+  EXPECT_EQ(fitted_type(fit_mappings(S, efc::pipeline::mapping_prior(false))), "linear");
 }
 
 // A first-order lag (a heating element) is fitted with its time constant.
@@ -905,4 +931,85 @@ TEST(TemplatesSignals, TheSurroundComparesEachSurfacePointWithItself) {
   gap[4].clear();
   EXPECT_TRUE(std::isnan(efc::pipeline::surround_from_cells(gap)[4]));  // a frame that sees no cell
   EXPECT_TRUE(efc::pipeline::surround_from_cells({}).empty());
+}
+
+// A heated part's colour blends from its own towards red-hot (1, 0.22,
+// 0.04) by f, times the shading. A near-black red burner (the stove's,
+// varied): its red chromaticity is already 0.95 cool and falls towards
+// red-hot's 0.79 as it heats, most of the way by f = 0.1. How much red-hot
+// the colour holds rises in proportion to f, and stays 0 while the burner
+// is cool however the light on it changes.
+TEST(TemplatesSignals, ADarkBurnersHeatRisesInProportionToItsGlow) {
+  const Eigen::Vector3d base(0.041, 0.0, 0.002), hot(1.0, 0.22, 0.04);
+  std::vector<Eigen::Vector3d> colour;
+  std::vector<double> f_of;
+  for (int i = 0; i < 40; ++i) {
+    const double f = i < 20 ? 0.0 : 0.025 * (i - 20);  // cool, then heating to 0.475
+    const double shade = 0.6 + 0.1 * std::sin(0.7 * i);  // the camera moving about it
+    colour.push_back(shade * ((1 - f) * base + f * hot));
+    f_of.push_back(f);
+  }
+  colour[5] = Eigen::Vector3d::Constant(NAN);  // a frame without its pixels
+  const std::vector<double> heat = efc::pipeline::hot_component(colour);
+  ASSERT_EQ(heat.size(), colour.size());
+  EXPECT_TRUE(std::isnan(heat[5]));
+  const double hot_sum = hot.sum();
+  for (int i = 0; i < 40; ++i) {
+    if (i == 5) continue;
+    const double shade = 0.6 + 0.1 * std::sin(0.7 * i);
+    EXPECT_NEAR(heat[i], shade * f_of[i] * hot_sum, 1e-9) << i;  // 0 while cool, whatever the shading
+  }
+  // The chromaticity alone fell as the burner heated.
+  EXPECT_LT(colour[39].x() / colour[39].sum(), colour[0].x() / colour[0].sum());
+  // A part coloured like red-hot itself: its red chromaticity.
+  const std::vector<double> ember = efc::pipeline::hot_component({0.5 * hot, 0.4 * hot});
+  EXPECT_NEAR(ember[0], 1.0 / hot_sum, 1e-12);
+  EXPECT_TRUE(efc::pipeline::hot_component({}).empty());
+}
+
+// The same, recorded (`efc synth`, press:2): a knob turns a near-black red
+// burner up and back twice, its heat linear in the knob with a half-second
+// lag. Read as its red chromaticity, the burner's colour reached most of
+// red-hot's at the first touch and stayed there while it cooled: a
+// counter. Its hot component rises and falls with the knob. An amber lamp
+// on the same box, switched by the knob, stays a light: its emission scales
+// its colour and leaves the hot component at 0.
+TEST(TemplatesSignals, ADarkBurnerTurnedUpIsHeatedLinearlyAndALampIsLit) {
+  efc_test::ProcessTempDir dir("efc-tpl-heat-");
+  fs::create_directories(dir.path());
+  const std::string box = R"({"efc": 1, "name": "hob", "parts": [
+    {"name": "body", "geometry": {"box": {"size": [0.4, 0.4, 0.3], "center": [0, 0, 0.15]}}, "rgba": [0.9, 0.9, 0.92, 1]},
+    {"name": "disc", "geometry": {"cylinder": {"radius": 0.09, "length": 0.01, "center": [0, 0, 0.305]}},
+     "rgba": RGBA, "joint": {"type": "fixed", "parent": "body"}},
+    {"name": "knob", "geometry": {"cylinder": {"radius": 0.025, "length": 0.025, "center": [0.1, -0.2125, 0.2], "axis": [0, -1, 0]}},
+     "rgba": [0.6, 0.6, 0.62, 1], "joint": {"type": "revolute", "parent": "body", "axis": [0, -1, 0], "origin": [0.1, -0.2, 0.2], "range": [0, 3.8]}}],
+    "functions": [{"name": "f", "receptor": "knob", "effector": "disc", FUNCTION}]})";
+  auto infer = [&](const std::string& name, const std::string& rgba, const std::string& function) {
+    std::string spec = box;
+    spec.replace(spec.find("RGBA"), 4, rgba);
+    spec.replace(spec.find("FUNCTION"), 8, function);
+    const fs::path spec_path = dir.path() / (name + ".json"), seq = dir.path() / name;
+    std::ofstream(spec_path) << spec;
+    const auto r = efc_test::run_efc("synth " + spec_path.string() + " -o " + seq.string() +
+                                     " --frames 120 --width 200 --height 150 --profile press:2 --noise none --seed 1");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    efc::test::TruthInput t;
+    std::string why;
+    EXPECT_TRUE(efc::test::load_truth_input(seq.string(), &t, &why)) << why;
+    efc::Diagnostics diags;
+    return efc::pipeline::infer_templates(t.input, efc::pipeline::TemplateOptions{}, diags);
+  };
+  const auto burner = infer("burner", "[0.041, 0.0, 0.002, 1]",
+                            R"("mapping": {"type": "linear"}, "effect": {"type": "temperature", "range": [20, 300],
+                               "time_constant": 0.5, "position": [0, 0, 0.31]})");
+  ASSERT_EQ(burner.size(), 1u);
+  EXPECT_EQ(burner[0].effect["type"], "temperature");
+  EXPECT_EQ(burner[0].mapping["type"], "linear") << burner[0].report["hypotheses"]["temperature"].dump();
+  EXPECT_EQ(burner[0].report["mapping_from"], "data");
+  const auto lamp = infer("lamp", "[1, 0.3, 0.1, 1]",
+                          R"("mapping": {"type": "binary"}, "effect": {"type": "illumination", "range": [0, 5],
+                             "color": [1.0, 0.4, 0.1]})");
+  ASSERT_EQ(lamp.size(), 1u);
+  EXPECT_EQ(lamp[0].effect["type"], "illumination");
+  EXPECT_EQ(lamp[0].mapping["type"], "binary");
 }

@@ -20,6 +20,14 @@ constexpr double kSupportClear = 0.015;  // m above the object's lowest point
 constexpr double kMinBlobGap = 0.015;  // m in front of the neighbourhood
 constexpr double kMaskTrust = 0.015;   // m: a mask pixel this near its part's box is the part
 constexpr int kMinEffectorPixels = 4;
+// The runtime's red-hot (runtime/mujoco: a heated part's colour blends
+// towards it; pipeline/ may not include runtime/).
+constexpr double kHotRgb[3] = {1.0, 0.22, 0.04};
+// hot_component(): the share of the frames, farthest from red-hot in
+// chromaticity, whose mean is the part's own colour; and how far from
+// red-hot's that colour must be for a blend towards it to show.
+constexpr double kBaseShare = 0.2;
+constexpr double kMinBaseToHot = 0.15;
 constexpr int kBlobReach = 4;
 constexpr double kMinBlobContrast = 24;  // grey levels: a blob unlike its surroundings
 constexpr double kMaxBackgroundStep = 10;  // grey levels: ... which are alike
@@ -306,7 +314,7 @@ struct Worker {
           if (left < kMinEffectorPixels) break;
           core.swap(next);
         }
-        double lum = 0, red = 0, sum_rgb = 0;
+        double lum = 0, red = 0, green = 0, blue = 0;
         long count = 0;
         for (int y = std::max(0, my0); y <= my1; ++y)
           for (int x = std::max(0, mx0); x <= mx1; ++x) {
@@ -318,17 +326,12 @@ struct Worker {
             }
             const double R = rgb.pixels[3 * i], G = rgb.pixels[3 * i + 1], B = rgb.pixels[3 * i + 2];
             lum += 0.299 * R + 0.587 * G + 0.114 * B;
-            red += R;
-            sum_rgb += R + G + B;
+            red += R, green += G, blue += B;
             ++count;
           }
         if (count >= kMinEffectorPixels) {
           o.glow[f] = lum / count / 255.0;
-          // Redness as chromaticity r = R / (R + G + B) of the mean colour:
-          // shading and a lamp's emission (MuJoCo adds emission x rgba) scale
-          // the channels alike and leave it, the runtime's heat blends the
-          // colour towards red-hot (1, 0.22, 0.04) and raises it.
-          o.heat[f] = sum_rgb > 0 ? red / sum_rgb : kNaN;
+          o.colour[f] = Eigen::Vector3d(red, green, blue) / (count * 255.0);  // heat: hot_component()
           ++s.frames_seen;
         }
       }
@@ -479,7 +482,10 @@ std::vector<EffectorSignals> measure_effectors(const TemplateInput& input, const
   *frames_failed = 0;
   if (!input.sequence) return out;
   const int N = input.sequence->meta().frames;
-  for (EffectorSignals& s : out) s.glow = s.heat = s.droplets = s.motes = s.surround = std::vector<double>(N, kNaN);
+  for (EffectorSignals& s : out) {
+    s.glow = s.heat = s.droplets = s.motes = s.surround = std::vector<double>(N, kNaN);
+    s.colour.assign(N, Eigen::Vector3d::Constant(kNaN));
+  }
   const int T = std::clamp(threads, 1, 16);
   std::vector<Worker> workers(T);
   std::vector<std::vector<std::vector<CellLum>>> surround_cells(effectors.size(), std::vector<std::vector<CellLum>>(N));
@@ -509,8 +515,49 @@ std::vector<EffectorSignals> measure_effectors(const TemplateInput& input, const
       out[e].droplet_top_z = std::max(out[e].droplet_top_z, s.droplet_top_z);
     }
   }
-  for (size_t e = 0; e < effectors.size(); ++e) out[e].surround = surround_from_cells(surround_cells[e]);
+  for (size_t e = 0; e < effectors.size(); ++e) {
+    out[e].surround = surround_from_cells(surround_cells[e]);
+    out[e].heat = hot_component(out[e].colour);
+  }
   for (EffectorSignals& s : out) s.frames_read = N - *frames_failed;
+  return out;
+}
+
+std::vector<double> hot_component(const std::vector<Eigen::Vector3d>& colour) {
+  std::vector<double> out(colour.size(), kNaN);
+  // Each frame's chromaticity, and how far it is from red-hot's.
+  const Eigen::Vector3d hot = Eigen::Vector3d(kHotRgb[0], kHotRgb[1], kHotRgb[2]) / (kHotRgb[0] + kHotRgb[1] + kHotRgb[2]);
+  std::vector<std::pair<double, int>> far;
+  std::vector<Eigen::Vector3d> chroma(colour.size(), Eigen::Vector3d::Constant(kNaN));
+  for (size_t f = 0; f < colour.size(); ++f) {
+    const Eigen::Vector3d& c = colour[f];
+    if (!c.allFinite() || c.sum() <= 0) continue;
+    chroma[f] = c / c.sum();
+    far.push_back({(chroma[f] - hot).norm(), static_cast<int>(f)});
+  }
+  if (far.empty()) return out;
+  // The part's own colour: the mean chromaticity of the frames farthest
+  // from red-hot's (kBaseShare of them): the frames it was coolest in.
+  std::sort(far.begin(), far.end(), std::greater<>());
+  const size_t take = std::max<size_t>(1, static_cast<size_t>(kBaseShare * far.size()));
+  Eigen::Vector3d base = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < take; ++k) base += chroma[far[k].second];
+  base /= static_cast<double>(take);
+  if ((base - hot).norm() < kMinBaseToHot) {
+    // A part coloured like red-hot itself: heat barely shifts its colour;
+    // its red chromaticity is what there is.
+    for (size_t f = 0; f < colour.size(); ++f)
+      if (chroma[f].allFinite()) out[f] = chroma[f].x();
+    return out;
+  }
+  Eigen::Matrix<double, 3, 2> A;
+  A.col(0) = base;
+  A.col(1) = hot;
+  const Eigen::LDLT<Eigen::Matrix2d> normal(A.transpose() * A);
+  // Never below 0: a colour farther from red-hot than the part's own is
+  // noise, or a light of another colour, not a part colder than cold.
+  for (size_t f = 0; f < colour.size(); ++f)
+    if (chroma[f].allFinite()) out[f] = std::max(0.0, normal.solve(A.transpose() * colour[f])(1));
   return out;
 }
 

@@ -2,10 +2,10 @@
 // pixels: one signal per image-borne effect hypothesis (geometry needs no
 // pixels: it is the effector's own joint position).
 //   glow      mean luminance of the effector's pixels (a lamp's emission)
-//   heat      redness of the effector's pixels as the chromaticity
-//             R / (R + G + B) of their mean colour (the runtime blends a
-//             heated part towards red-hot; shading and a lamp's emission
-//             scale the channels alike and leave it)
+//   heat      how much red-hot the effector's mean colour holds
+//             (hot_component(): the runtime blends a heated part towards
+//             red-hot; shading and a lamp's emission scale the channels
+//             alike and leave it at 0 while the part is cool)
 //   droplets  area (m^2 at the effector's distance) of small water-blue
 //             blobs whose ray passes through the space below, around or
 //             above the effector
@@ -44,6 +44,7 @@ namespace efc::pipeline {
 
 struct EffectorSignals {
   std::vector<double> glow, heat, droplets, motes;  // per frame; NaN = not observed
+  std::vector<Eigen::Vector3d> colour;               // mean colour of its pixels (heat: hot_component())
   // Luminance of the static surfaces around the effector (the blobs' search
   // space; the hand and the movable parts left out), each 2 cm object-frame
   // cell against its own mean over the frames that see it: a lamp lights
@@ -81,6 +82,22 @@ struct CellLum {
 // follows only its lighting. Cells seen in one frame say nothing and are
 // left out. NaN where a frame has none.
 std::vector<double> surround_from_cells(const std::vector<std::vector<CellLum>>& frames);
+
+// The heat signal: how much red-hot the effector's mean colour holds, per
+// frame. The runtime blends a heated part's colour from its own (B)
+// towards red-hot (H = (1, 0.22, 0.04)) by a fraction f of the way from
+// e_lo to glowing, and the pixel is that colour times the shading s (a
+// lamp's emission scales it alike): P = s ((1 - f) B + f H). Written as
+// P = alpha b + beta h in the chromaticities b and h of B and H (unit
+// sums), beta = s f sum(H): linear in f, and 0 while the part is cool
+// whatever the light (never below 0). (The chromaticity R / (R + G + B)
+// alone is not: a near-black burner's reaches most of red-hot's at
+// f = 0.05, and a dark red one's falls as it heats.) b is the mean
+// chromaticity of the fifth of the frames farthest from h's; a part
+// coloured within 0.15 of h (an amber lamp: a blend towards red-hot barely
+// shows, and its noise would be amplified) gets its red chromaticity
+// instead. colour[f]: the mean R, G, B in [0, 1]; NaN where unobserved.
+std::vector<double> hot_component(const std::vector<Eigen::Vector3d>& colour);
 
 // A moving effector's pixels change with its pose: a lid turning towards
 // the light brightens, its colour shifts with the shading. What its own

@@ -23,6 +23,7 @@ struct Prep {
   double s_min = 0, s_max = 0;
   double floor2 = 0;
   int b_sign = 0;
+  bool b_sign_all_models = false;
   std::vector<double> taus;
   int max_order = 1;
   bool start_anywhere = false;
@@ -303,9 +304,10 @@ void consider(const Prep& P, const std::vector<double>& u_at, MappingModel proto
     int pairs = 0;
     const double rss = fit_ar1(P, &v, &a, &b, &rho, &pairs);
     // The sign holds for on/off models (on is e_hi); a linear or cumulative
-    // map may fall as s_R or the presses rise (negative gain or delta).
+    // map may fall as s_R or the presses rise (negative gain or delta),
+    // unless the signal only rises with its effect (b_sign_all_models).
     const bool on_off = proto.type == "binary" || proto.type == "step";
-    if (!std::isfinite(rss) || (on_off && P.b_sign != 0 && P.b_sign * b <= 0)) continue;
+    if (!std::isfinite(rss) || ((on_off || P.b_sign_all_models) && P.b_sign != 0 && P.b_sign * b <= 0)) continue;
     const int k = k_base + 1 + (tau > 0 ? 1 : 0) + (delay > 0 ? 1 : 0) + (ratio != 1 ? 1 : 0);  // + rho, lag, dead time, second lag
     const double score = bic(rss, pairs, pairs, k, P.floor2);
     if (P.require_lag && tau <= 0) {
@@ -431,6 +433,7 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
   const double fl = series.noise_floor > 0 ? series.noise_floor : 1e-4 * std::max(yhi - ylo, 1e-12);
   P.floor2 = fl * fl;
   P.b_sign = series.b_sign;
+  P.b_sign_all_models = series.b_sign_all_models;
   P.max_order = series.allow_lag ? std::max(1, series.max_lag_order) : 1;
   P.start_anywhere = series.lag_starts_anywhere;
   P.require_lag = series.allow_lag && series.require_lag;

@@ -65,6 +65,9 @@ struct MappingSeries {
   // For the on/off models (binary, step): +1: y may only rise when the mapping is on (a heated part reddens; a
   // cooler shows nothing), -1: only fall, 0: either.
   int b_sign = 0;
+  // The sign holds for every model, not only the on/off ones: a linear or
+  // cumulative map's response then rises with its target too.
+  bool b_sign_all_models = false;
   // The lag may start away from the first target (a temperature starts at
   // e_lo whatever the mapping asks at rest: a 'minus' button or a falling
   // dial is hot at rest only after warming up).

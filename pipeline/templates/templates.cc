@@ -270,10 +270,14 @@ std::vector<InferredFunction> infer_templates(const TemplateInput& input, const 
             S.allow_lag = true;            // temperature lags its target
             S.lag_starts_anywhere = true;  // from e_lo, whatever the target at rest
             S.b_sign = 1;                  // switched on, a part reddens (a cooler shows nothing)
+            // Under every map: a falling one (a part hot at rest that its
+            // knob cools) is not read; in the suites what fell with a
+            // receptor was a lamp's colour leaving red-hot, or a drift.
+            S.b_sign_all_models = true;
             S.require_lag = true;          // with thermal inertia (a lamp's tint is instant)
           }
-          // Floors: a grey level (luminance), a thousandth of chromaticity,
-          // a millimetre (blobs: sqrt of m^2).
+          // Floors: a grey level (luminance), a thousandth of red-hot in
+          // the colour (hot_component()), a millimetre (blobs: sqrt of m^2).
           S.noise_floor = k == 1 ? 0.5 / 255 : k == 2 ? 1e-3 : 1e-3;
         }
         const std::vector<double>& y = signal[k];
