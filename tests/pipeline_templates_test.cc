@@ -972,8 +972,9 @@ TEST(TemplatesSignals, ADarkBurnersHeatRisesInProportionToItsGlow) {
 // lag. Read as its red chromaticity, the burner's colour reached most of
 // red-hot's at the first touch and stayed there while it cooled: a
 // counter. Its hot component rises and falls with the knob. An amber lamp
-// on the same box, switched by the knob, stays a light: its emission scales
-// its colour and leaves the hot component at 0.
+// on the same box, switched by the knob, stays a light: coloured within
+// 0.15 of red-hot, it is read by its red chromaticity, which its emission
+// (scaling its colour) leaves alone.
 TEST(TemplatesSignals, ADarkBurnerTurnedUpIsHeatedLinearlyAndALampIsLit) {
   efc_test::ProcessTempDir dir("efc-tpl-heat-");
   fs::create_directories(dir.path());

@@ -538,8 +538,8 @@ std::vector<double> hot_component(const std::vector<Eigen::Vector3d>& colour) {
   if (far.empty()) return out;
   // The part's own colour: the mean chromaticity of the frames farthest
   // from red-hot's (kBaseShare of them): the frames it was coolest in.
-  std::sort(far.begin(), far.end(), std::greater<>());
   const size_t take = std::max<size_t>(1, static_cast<size_t>(kBaseShare * far.size()));
+  std::partial_sort(far.begin(), far.begin() + static_cast<std::ptrdiff_t>(take), far.end(), std::greater<>());
   Eigen::Vector3d base = Eigen::Vector3d::Zero();
   for (size_t k = 0; k < take; ++k) base += chroma[far[k].second];
   base /= static_cast<double>(take);
