@@ -425,6 +425,55 @@ TEST(PipelineInfer, AButtonWhosePressDoesNotShowIsPressedByItsName) {
   EXPECT_FALSE(shown.type_from_name);
 }
 
+// A round button (axis z) whose registration turns it by a random walk of
+// half radians about a line along its axis 4 cm beside it (seed 0's s0044
+// light button: its hinge fitted 3 cm beside it, and its rim and ridge show
+// that turn plainly), pressed 6 mm in for frames 40-59 and 95-114, and
+// slid along x by slide(f) (a slider's knob in its slot; 0 for a button).
+PartTrack slipping_beside(int frames, unsigned seed, const std::function<double(int)>& slide) {
+  const Vector3d axis = Vector3d::UnitZ(), beside(0.04, 0, 0);
+  PartTrack t = turning(ridged_button(8), axis, Vector3d::Zero(), 0.0, frames, 0.0, seed);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0, 1);
+  double slip = 0;
+  for (int f = 0; f < frames; ++f) {
+    slip += 0.3 * g(rng);
+    const bool in = (f >= 40 && f < 60) || (f >= 95 && f < 115);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(slip, axis).toRotationMatrix();
+    T.translation() = beside - T.linear() * beside + Vector3d(0.001 * g(rng), 0.001 * g(rng), 0.0005 * g(rng)) -
+                      (in ? 0.006 : 0.0) * axis + slide(f) * Vector3d::UnitX();
+    t.motion[f] = T;
+  }
+  with_information(&t);
+  return t;
+}
+
+TEST(PipelineInfer, AButtonWhoseSlipTurnsItAboutALineBesideItIsPressedByItsName) {
+  // A hinge beside the button explains its poses best, so no slip about
+  // itself reads its press; named a button, its face and its name say it
+  // slides, along its symmetry axis (the hinge's, beside it, is the
+  // slip's). Named a knob or nothing, it turns.
+  const int frames = 150;
+  const Vector3d axis = Vector3d::UnitZ();
+  const PartTrack t = slipping_beside(frames, 73, [](int) { return 0.0; });
+  const JointEstimate knob = estimate_joint(t, no_hand(frames), true, nullptr, "revolute");
+  ASSERT_EQ(knob.from_part.type, "revolute");
+  EXPECT_FALSE(turns_about_itself(t.model, knob.from_part.axis, knob.from_part.origin));
+  EXPECT_FALSE(knob.press_past_slip);
+  EXPECT_NE(knob.type, "prismatic");
+  EXPECT_NE(estimate_joint(t, no_hand(frames), true, nullptr, "").type, "prismatic");
+  const JointEstimate button = estimate_joint(t, no_hand(frames), true, nullptr, "prismatic");
+  EXPECT_TRUE(button.press_past_slip);
+  EXPECT_EQ(button.type, "prismatic");
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(button.axis.dot(axis)))), 0.1);
+  ASSERT_EQ(static_cast<int>(button.q.size()), frames);
+  EXPECT_NEAR(button.q[50] - button.q[20], 0.006, 0.002);  // in at the press, out before
+  EXPECT_NEAR(button.q[105] - button.q[80], 0.006, 0.002);
+  // Nobody operates an effector: its slip is no press, whatever its name.
+  EXPECT_FALSE(estimate_joint(t, no_hand(frames), false, nullptr, "prismatic").press_past_slip);
+}
+
 // A plain round button 6 cm across (rim and front, axis z, no ridge):
 // nothing on it shows a turn about its axis. Its front is seen more than
 // its rim, as a camera in front of it sees it.
@@ -987,6 +1036,35 @@ TEST(PipelineInfer, TheGripShowsTheTwistOrThePressTheRoundPartHides) {
   const JointEstimate opened = estimate_joint(door, hand, true, &press);
   EXPECT_EQ(opened.source, "part");
   EXPECT_EQ(opened.type, "revolute");
+}
+
+TEST(PipelineInfer, AButtonNamedToSlideFollowsItsGripOnlyWhereItSlidesFurtherThanAPress) {
+  // The button whose registration slips about a line beside it, held in
+  // frames 20 to 130 by a grip that slides along x: 6 cm and back (a
+  // slider's knob, moving with it along its slot), or 1.5 cm and back (a
+  // finger's wander on a button pressed 6 mm along its axis). A grip
+  // sliding further than a drifting press goes (kMaxDriftedPress) decides;
+  // a finger's wander does not, and the press goes along the part's axis.
+  const int frames = 150;
+  std::mt19937 rng(74);
+  std::normal_distribution<double> g(0, 0.0005);
+  for (const double reach : {0.06, 0.015}) {
+    const auto along = [&](int f) { return f < 20 || f >= 130 ? 0.0 : reach * std::sin(kPi * (f - 20) / 110.0); };
+    const PartTrack grip_track = grip(frames, 20, 130, [&](int f) {
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+      T.translation() = along(f) * Vector3d::UnitX() + Vector3d(g(rng), g(rng), g(rng));
+      return T;
+    });
+    const PartTrack part = slipping_beside(frames, 75, [&](int f) { return reach > 0.02 ? along(f) : 0.0; });
+    const JointEstimate j = estimate_joint(part, no_hand(frames), true, &grip_track, "prismatic");
+    ASSERT_EQ(j.from_part.type, "revolute") << reach;
+    ASSERT_EQ(j.from_grip.type, "prismatic") << reach;
+    EXPECT_EQ(j.type, "prismatic") << reach;
+    const Vector3d way = reach > 0.02 ? Vector3d::UnitX() : Vector3d::UnitZ();
+    EXPECT_LT(std::acos(std::min(1.0, std::abs(j.axis.dot(way)))), 0.15) << reach;
+    EXPECT_EQ(j.press_past_slip, reach < 0.02) << reach;
+    EXPECT_EQ(j.source, reach > 0.02 ? "grip" : "part") << reach;
+  }
 }
 
 TEST(PipelineInfer, AKnobTurnedPastAQuarterTurnIsReadThroughTheGripsHalfTurns) {

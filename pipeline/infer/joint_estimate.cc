@@ -873,8 +873,24 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       j.has_part_track && part_reliable && j.from_part.type == "revolute" &&
       turns_about_itself(track.model, j.from_part.axis, j.from_part.origin) && j.part_visibility < kPlainTurnVisibility;
   Eigen::Vector3d spin_axis = Eigen::Vector3d::Zero();
-  if (operated && part_turns_unshown && !hand_turns && near_symmetry_axis(track.model, &symmetry) &&
-      presses_along_its_axis(track.model, symmetry)) {
+  // A round part named to slide (a button, joint_names.h) is read the same
+  // way whatever its track's turn looks like: a registration of a few
+  // hundred points on a disc slips into turns of whole radians about axes
+  // through it or beside it, which its rim and face can show (seed 0's
+  // s0044 light button: visibility 1.5, its hinge fitted 3 cm beside it;
+  // seed 1's s0047 button: 0.5, beside it). Where the grip slides further
+  // than a drifting press goes (kMaxDriftedPress), the grip decides (below:
+  // a slider's knob slides along its slot, not along its own axis, seed 1's
+  // s0031); else its face and its name say which way it goes, unless the
+  // hand turned it: the turn's axis there is no better than a guess (the
+  // grip's slide a finger's wander), and its press goes along its
+  // symmetry axis.
+  const bool turn_of_a_button =
+      j.has_part_track && part_reliable && j.from_part.type == "revolute" && named == "prismatic";
+  const bool grip_slides = j.has_grip_track && j.from_grip.type == "prismatic" &&
+                           j.grip_visibility >= kMinVisibility && j.from_grip.range_hi - j.from_grip.range_lo > kMaxDriftedPress;
+  if (operated && (part_turns_unshown || (turn_of_a_button && !grip_slides)) && !hand_turns &&
+      near_symmetry_axis(track.model, &symmetry) && presses_along_its_axis(track.model, symmetry)) {
     std::vector<std::vector<int>> press_frames;
     const Track untwisted = part_samples(track, model_centre, kPartBin, &press_frames, true, &symmetry);
     std::vector<double> along;
@@ -887,8 +903,10 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     const bool pressed = held_press(along);
     if (pressed || named == "prismatic") {
       std::vector<std::vector<int>> frames_one_by_one;
-      spin_axis = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), "revolute")
-                      .axis.normalized();
+      spin_axis = part_turns_unshown ? estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one),
+                                                              "revolute")
+                                         .axis.normalized()
+                                   : symmetry;
       j.press_past_slip = spin_axis.allFinite();
       j.type_from_name = j.press_past_slip && !pressed;
     }
@@ -923,7 +941,8 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // shows on the hand's shape.
   const bool part_may_slip = !j.swing_past_slip && !along_spin && part_shows_a_slip;
   const bool grip_decides = !j.swing_past_slip && !along_spin && j.has_grip_track && j.from_grip.type != "fixed" &&
-                            j.grip_visibility >= kMinVisibility && (!part_decides || part_may_slip);
+                            j.grip_visibility >= kMinVisibility &&
+                            (!part_decides || part_may_slip || (operated && turn_of_a_button && grip_slides));
   if (grip_decides) part_decides = false;
   const bool hand_decides = !part_decides && !grip_decides && j.has_hand_track && j.from_hand.type != "fixed";
   std::string type = "fixed";
