@@ -338,6 +338,21 @@ TEST(PipelineInfer, AReceptorsPressShowsPastItsSlip) {
   EXPECT_EQ(turned.from_hand.type, "revolute");
   EXPECT_FALSE(turned.press_past_slip);
   EXPECT_FALSE(estimate_joint(round_part(true, false, 71), turning_hand, true, nullptr, "prismatic").press_past_slip);
+  // Contacts 1.2 cm from the part's middle, under a centimetre of detector
+  // noise, that trace 2 rad about it: a fingertip on a button, whose noise a
+  // hinge through it fits by radians. No lever arm, no turn: the press shows.
+  std::mt19937 rng(76);
+  std::normal_distribution<double> g(0, 0.01);
+  std::vector<Vector3d> fingertip = no_hand(frames);
+  for (int f = 20; f < 130; ++f) {
+    const double a = 2.0 * std::sin(kPi * (f - 20) / 110.0);
+    fingertip[f] = Vector3d(0.012 * std::cos(a) + g(rng), 0.012 * std::sin(a) + g(rng), 0.012 + 0.3 * g(rng));
+  }
+  const JointEstimate pressed = estimate_joint(round_part(true, false, 71), fingertip, true);
+  ASSERT_EQ(pressed.from_hand.type, "revolute");
+  EXPECT_LT(pressed.from_hand.radius, 0.03);
+  EXPECT_TRUE(pressed.press_past_slip);
+  EXPECT_EQ(pressed.type, "prismatic");
 }
 
 TEST(PipelineInfer, ADrivenRamsRiseShowsPastItsSpin) {

@@ -857,8 +857,13 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // press's axis is the spin's, from the part's poses frame by frame (the
   // slide_over_turn rule's hinge): the symmetry axis of a shape seen from
   // one side shows a press well enough, but is tens of degrees off.
+  // The hand's contacts show a turn only from a lever arm (hand_has_lever's
+  // kHandLeverNoises detector errors): a fingertip on a button, a centimetre
+  // or two from the hinge its noise fits, turns it by radians (seed 0's
+  // s0013 and s0058 speed buttons: 7.5 and 2.4 rad at 1.2 and 2.0 cm).
   const bool hand_turns = (j.has_grip_track && j.from_grip.type == "revolute" && j.grip_visibility >= kSlipVisibility) ||
-                          (j.has_hand_track && j.from_hand.type == "revolute");
+                          (j.has_hand_track && j.from_hand.type == "revolute" &&
+                           j.from_hand.radius >= kHandLeverNoises * kHandPointNoise);
   // The rule reads any turn of the part about itself that its shape does
   // not show plainly (less than a generic turn, kPlainTurnVisibility), and
   // a track too faint to show its turn at all (below kMinVisibility): a
