@@ -855,8 +855,9 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // the hand twisted the part (s0049's lever under degraded masks: its
   // centre swung 5 mm one way along its axis as it turned). The
   // press's axis is the spin's, from the part's poses frame by frame (the
-  // slide_over_turn rule's hinge): the symmetry axis of a shape seen from
-  // one side shows a press well enough, but is tens of degrees off.
+  // slide_over_turn rule's hinge), where the part turns about itself: the
+  // symmetry axis of a shape seen from one side shows a press well enough,
+  // but is tens of degrees off (a hinge beside the part is no better).
   // The hand's contacts show a turn only from a lever arm (hand_has_lever's
   // kHandLeverNoises detector errors): a fingertip on a button, a centimetre
   // or two from the hinge its noise fits, turns it by radians (seed 0's
@@ -892,8 +893,8 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // symmetry axis.
   const bool turn_of_a_button =
       j.has_part_track && part_reliable && j.from_part.type == "revolute" && named == "prismatic";
-  const bool grip_slides = j.has_grip_track && j.from_grip.type == "prismatic" &&
-                           j.grip_visibility >= kMinVisibility && j.from_grip.range_hi - j.from_grip.range_lo > kMaxDriftedPress;
+  const bool grip_slides = j.has_grip_track && j.from_grip.type == "prismatic" && j.grip_visibility >= kMinVisibility &&
+                           j.from_grip.range_hi - j.from_grip.range_lo > kMaxDriftedPress;
   if (operated && (part_turns_unshown || (turn_of_a_button && !grip_slides)) && !hand_turns &&
       near_symmetry_axis(track.model, &symmetry) && presses_along_its_axis(track.model, symmetry)) {
     std::vector<std::vector<int>> press_frames;
@@ -908,10 +909,10 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     const bool pressed = held_press(along);
     if (pressed || named == "prismatic") {
       std::vector<std::vector<int>> frames_one_by_one;
-      spin_axis = part_turns_unshown ? estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one),
-                                                              "revolute")
-                                         .axis.normalized()
-                                   : symmetry;
+      spin_axis = symmetry;  // a hinge beside the part is the slip's, not the press's
+      if (part_turns_unshown)
+        spin_axis = estimate_articulation_as(part_samples(track, model_centre, 1, &frames_one_by_one), "revolute")
+                        .axis.normalized();
       j.press_past_slip = spin_axis.allFinite();
       j.type_from_name = j.press_past_slip && !pressed;
     }

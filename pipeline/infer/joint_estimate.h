@@ -81,7 +81,10 @@ struct JointEstimate {
   // whose centre, its poses less their twist about that axis, is held one
   // way along it for a while and never as far the other way: the press (a
   // round button's) decides, along the turn's axis, the turn taken for the
-  // registration's slip.
+  // registration's slip. A round receptor named to slide (a button) is read
+  // so whatever hinge its track fits (through it or beside it, shown plainly
+  // or not), pressed along its symmetry axis, unless the hand's contacts
+  // turn it from a lever arm or its grip slides further than a press.
   bool press_past_slip = false;
   // A part nobody operates whose track turns about an axis through itself,
   // and whose poses less that twist slide along the axis: the slide (a
