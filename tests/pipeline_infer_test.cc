@@ -281,19 +281,27 @@ TEST(PipelineInfer, ARoundShadeSeenFromOneSideSlipsRoundItselfToo) {
 // 2 mm across the axis; `pressed`: held 6 mm in along the axis for frames
 // 40-59 and 95-114; `jumps`: thrown 6 mm one way or the other along the
 // axis for one frame in 23, as a knob's slipping registration is.
-PartTrack slipping_round_part(const Cloud& model, bool pressed, bool jumps, int frames, unsigned seed) {
+// `slip_step`: the random walk's step (rad a frame); `across`: the wander
+// across the axis (m); the turn is about a line along the axis through
+// `pivot` (the part's middle by default, a line beside it otherwise); and
+// the part slides along x by slide(f) (a slider's knob in its slot).
+PartTrack slipping_round_part(const Cloud& model, bool pressed, bool jumps, int frames, unsigned seed,
+                              double slip_step = 0.6, double across = 0.002,
+                              const Vector3d& pivot = Vector3d::Zero(),
+                              const std::function<double(int)>& slide = nullptr) {
   const Vector3d axis = Vector3d::UnitZ();
   PartTrack t = turning(model, axis, Vector3d::Zero(), 0.0, frames, 0.0, seed);
   std::mt19937 rng(seed);
   std::normal_distribution<double> g(0, 1);
   double slip = 0;
   for (int f = 0; f < frames; ++f) {
-    slip += 0.6 * g(rng);
+    slip += slip_step * g(rng);
     const bool in = pressed && ((f >= 40 && f < 60) || (f >= 95 && f < 115));
     const double jump = jumps && f % 23 == 11 ? (f % 2 ? 0.006 : -0.006) : 0.0;
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.linear() = Eigen::AngleAxisd(slip, axis).toRotationMatrix();
-    T.translation() = Vector3d(0.002 * g(rng), 0.002 * g(rng), 0.0005 * g(rng)) + (jump - (in ? 0.006 : 0.0)) * axis;
+    T.translation() = pivot - T.linear() * pivot + Vector3d(across * g(rng), across * g(rng), 0.0005 * g(rng)) +
+                      (jump - (in ? 0.006 : 0.0)) * axis + (slide ? slide(f) : 0.0) * Vector3d::UnitX();
     t.motion[f] = T;
   }
   with_information(&t);
@@ -446,22 +454,7 @@ TEST(PipelineInfer, AButtonWhosePressDoesNotShowIsPressedByItsName) {
 // that turn plainly), pressed 6 mm in for frames 40-59 and 95-114, and
 // slid along x by slide(f) (a slider's knob in its slot; 0 for a button).
 PartTrack slipping_beside(int frames, unsigned seed, const std::function<double(int)>& slide) {
-  const Vector3d axis = Vector3d::UnitZ(), beside(0.04, 0, 0);
-  PartTrack t = turning(ridged_button(8), axis, Vector3d::Zero(), 0.0, frames, 0.0, seed);
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> g(0, 1);
-  double slip = 0;
-  for (int f = 0; f < frames; ++f) {
-    slip += 0.3 * g(rng);
-    const bool in = (f >= 40 && f < 60) || (f >= 95 && f < 115);
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(slip, axis).toRotationMatrix();
-    T.translation() = beside - T.linear() * beside + Vector3d(0.001 * g(rng), 0.001 * g(rng), 0.0005 * g(rng)) -
-                      (in ? 0.006 : 0.0) * axis + slide(f) * Vector3d::UnitX();
-    t.motion[f] = T;
-  }
-  with_information(&t);
-  return t;
+  return slipping_round_part(ridged_button(8), true, false, frames, seed, 0.3, 0.001, Vector3d(0.04, 0, 0), slide);
 }
 
 TEST(PipelineInfer, AButtonWhoseSlipTurnsItAboutALineBesideItIsPressedByItsName) {
