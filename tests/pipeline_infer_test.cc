@@ -826,6 +826,25 @@ TEST(PipelineInfer, TheAxisPointsTheWayThePartWasActuated) {
   EXPECT_LT((handle - hand[30]).norm(), 0.01);
 }
 
+// The hand's contacts, the templates' second candidate for s_R, are
+// oriented by their own positions: where the part's track is its
+// registration's slip (a round knob's), its sign says nothing of the
+// hand's. Here the door's track turns +1.2 rad about +z while the
+// contacts at its edge turn the other way: the part's q still rises to
+// +1.2, and the hand's too.
+TEST(PipelineInfer, TheHandsContactsAreOrientedByTheirOwnTurn) {
+  const int frames = 90;
+  const PartTrack t = turning(panel(), Vector3d::UnitZ(), Vector3d::Zero(), 1.2, frames, 0.001, 5);
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 0; f < frames; ++f) hand[f] = t.motion[f].inverse() * Vector3d(0.55, -0.02, 0.4);
+  const JointEstimate j = estimate_joint(t, hand);
+  ASSERT_EQ(j.type, "revolute");
+  ASSERT_EQ(j.source, "part");
+  EXPECT_NEAR(j.q[45], 1.2, 0.05);
+  ASSERT_EQ(j.q_hand.size(), j.q.size());
+  EXPECT_NEAR(j.q_hand[45], 1.2, 0.1);
+}
+
 // The hand's points read a turn only from a lever arm: held 1.5 cm from
 // the axis (a knob's grip), a centimetre of detector error turns them by
 // radians, so the templates get no second candidate from them; held at
@@ -1094,12 +1113,20 @@ TEST(PipelineInfer, AKnobTurnedPastAQuarterTurnIsReadThroughTheGripsHalfTurns) {
   });
   std::vector<Vector3d> hand = no_hand(frames);
   for (int f = 20; f < 130; ++f) hand[f] = Vector3d(0, 0, 0.012);
-  const JointEstimate knob = estimate_joint(slipping(frames, 62), hand, true, &twist);
-  ASSERT_EQ(knob.source, "grip");
-  EXPECT_EQ(knob.type, "revolute");
-  ASSERT_EQ(static_cast<int>(knob.q.size()), frames);
-  for (int f : {40, 75, 110}) EXPECT_NEAR(std::abs(knob.q[f] - knob.q[10]), std::abs(angle(f)), 0.1) << "frame " << f;
-  EXPECT_NEAR(knob.range_hi - knob.range_lo, 3.0, 0.15);
+  // The knob's own track slips round its axis (the slip's axis is the
+  // joint's, the grip's twist about it the position), or shows nothing
+  // (the hand hides the knob: the grip's own hinge and twist); either way
+  // the grip's half turns are unwrapped.
+  PartTrack hidden = turning(ridged_button(), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0003, 62);
+  with_information(&hidden);
+  for (const PartTrack& part : {slipping(frames, 62), hidden}) {
+    const JointEstimate knob = estimate_joint(part, hand, true, &twist);
+    ASSERT_EQ(knob.source, "grip");
+    EXPECT_EQ(knob.type, "revolute");
+    ASSERT_EQ(static_cast<int>(knob.q.size()), frames);
+    for (int f : {40, 75, 110}) EXPECT_NEAR(std::abs(knob.q[f] - knob.q[10]), std::abs(angle(f)), 0.1) << "frame " << f;
+    EXPECT_NEAR(knob.range_hi - knob.range_lo, 3.0, 0.15);
+  }
 }
 
 TEST(PipelineInfer, ARockersGripSwingsAboutItsHingeNotAboutThePartsSlip) {

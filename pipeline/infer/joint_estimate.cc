@@ -1153,6 +1153,15 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.origin = a.origin;
     for (size_t k = 0; k < frames.size() && k < a.q.size(); ++k)
       for (int f : frames[k]) q[f] = a.q[k];
+    // A grip's turn, like the slip's above, is right only modulo a half
+    // turn about a knob (twist_unwrap.h): a knob turned 3.8 rad read as
+    // 0.6 (seed 1's s0034). A lever's grip, far from its hinge, never
+    // lands half a turn off, and its smooth course needs no half turns.
+    if (grip_decides && type == "revolute") {
+      std::vector<bool> held(n, false);
+      for (int f : hand_frames) held[f] = true;
+      q = unwrap_half_turns(q, held, kRegraspFrames);
+    }
     // A held lever's or handle's own poses fit a hinge 5 to 40 degrees off
     // (a bar is nearly round about its length, which its registration can
     // turn about); the hand holding it turns with it, and its grip, a shape
@@ -1306,9 +1315,23 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   if (-percentile(0.02) > percentile(0.98)) {
     j.axis = -j.axis;
     for (double& v : q) v = -v;
-    for (double& v : j.q_hand) v = -v;  // NaN stays NaN
     std::reverse(sorted.begin(), sorted.end());
     for (double& v : sorted) v = -v;
+  }
+  // The hand's contacts, the templates' second candidate, are oriented by
+  // the same rule on their own positions: where the part's track is its
+  // registration's noise (a round knob's), its sign says nothing of the
+  // hand's (seed 0's s0000 knob: the contacts read its 3.9 rad as -3.9).
+  if (!j.q_hand.empty()) {
+    std::vector<double> hand_sorted;
+    for (double v : j.q_hand)
+      if (!std::isnan(v)) hand_sorted.push_back(v);
+    std::sort(hand_sorted.begin(), hand_sorted.end());
+    const auto hand_percentile = [&](double p) {
+      return hand_sorted[static_cast<size_t>(p * (hand_sorted.size() - 1))];
+    };
+    if (!hand_sorted.empty() && -hand_percentile(0.02) > hand_percentile(0.98))
+      for (double& v : j.q_hand) v = -v;  // NaN stays NaN
   }
   const int ref = track.reference_frame;
   const double q_ref = ref >= 0 && ref < n && !q.empty() ? q[ref] : 0.0;
