@@ -265,6 +265,9 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   // tracked like a part (grip_track.h).
   t0 = Clock::now();
   std::vector<std::unique_ptr<PartTrack>> grips(obs.parts.size());
+  // The grip's points in the object frame, for the twist search about the
+  // hinge (twist_search.h).
+  std::vector<std::vector<Cloud>> grip_points(obs.parts.size());
   std::vector<int> held;  // the operated parts the hand holds in some frame
   if (!obs.hand_clouds.empty()) {
     for (int p : moving_parts) {
@@ -279,6 +282,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
         const int p = held[k];
         const std::vector<Cloud> clouds = grip_clouds(obs, hand_points[p], to_object);
         grips[p] = std::make_unique<PartTrack>(track_clouds(clouds, to_object, grip_tracking));
+        grip_points[p] = clouds;
+        for (size_t f = 0; f < clouds.size() && f < to_object.size(); ++f) transform_cloud(to_object[f], &grip_points[p][f]);
       }
     };
     std::vector<std::thread> pool;
@@ -302,7 +307,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
         const int p = moving_parts[k];
         if (tracks[p])
           joints[p] = estimate_joint(*tracks[p], hand_points[p], operated(p), grips[p].get(),
-                                     joint_named(obs.parts[p].name), !obs.hands.empty());
+                                     joint_named(obs.parts[p].name), !obs.hands.empty(),
+                                     grips[p] ? &grip_points[p] : nullptr);
       }
     };
     std::vector<std::thread> pool;

@@ -9,6 +9,7 @@
 
 #include "pipeline/cloud/icp.h"
 #include "pipeline/infer/part_tracking.h"
+#include "pipeline/infer/twist_search.h"
 #include "pipeline/infer/twist_unwrap.h"
 
 namespace efc::pipeline {
@@ -720,7 +721,8 @@ Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
 }
 
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points, bool operated,
-                             const PartTrack* grip, const std::string& named, bool hand_recorded) {
+                             const PartTrack* grip, const std::string& named, bool hand_recorded,
+                             const std::vector<Cloud>* grip_points) {
   JointEstimate j;
   const int n = static_cast<int>(track.motion.size());
   // The part's own track: the pose of its model's centroid per tracked
@@ -945,7 +947,19 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // The grip speaks where the part's own track cannot show the motion, or
   // shows only a turn its registration can slip into, and its own motion
   // shows on the hand's shape.
-  const bool part_may_slip = !j.swing_past_slip && !along_spin && part_shows_a_slip;
+  // So is a turn its shape barely shows about a line beside the part
+  // along its symmetry axis (within kFacingCos), where the grip turns too:
+  // the registration's slip and its drift across the axis fit a knob's
+  // hinge a centimetre or two off (seed 1's s0034 left knob, 1.5 cm), and
+  // the part's track read the knob's 4.5 rad turns as noise of half a
+  // radian. Not where the grip does not turn (seed 1's s0014 crank: its
+  // grip's slide would type it).
+  Eigen::Vector3d spin_of_shape;
+  const bool slip_beside = operated && part_shows_motion && j.from_part.type == "revolute" && j.has_grip_track &&
+                           j.from_grip.type == "revolute" && j.part_visibility < kSlipVisibility && part_reliable &&
+                           near_symmetry_axis(track.model, &spin_of_shape) &&
+                           std::abs(spin_of_shape.dot(j.from_part.axis.normalized())) >= kFacingCos;
+  const bool part_may_slip = !j.swing_past_slip && !along_spin && (part_shows_a_slip || slip_beside);
   const bool grip_decides = !j.swing_past_slip && !along_spin && j.has_grip_track && j.from_grip.type != "fixed" &&
                             j.grip_visibility >= kMinVisibility &&
                             (!part_decides || part_may_slip || (operated && turn_of_a_button && grip_slides));
@@ -1108,6 +1122,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
         q[f] = twist_about(m, j.axis);
       }
     }
+    if (type != "prismatic" && grip_points) q = search_twists(*grip_points, grip->model, j.axis, j.origin, q);
     // The hand's registration is ambiguous by half a turn about the knob
     // (twist_unwrap.h): its twist is unwrapped along the recording.
     if (type != "prismatic") {
@@ -1157,6 +1172,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     // turn about a knob (twist_unwrap.h): a knob turned 3.8 rad read as
     // 0.6 (seed 1's s0034). A lever's grip, far from its hinge, never
     // lands half a turn off, and its smooth course needs no half turns.
+    if (grip_decides && type == "revolute" && grip_points) {
+      std::vector<double> registered(n, kNaN);
+      for (size_t f = 0; f < grip->motion.size() && f < registered.size(); ++f)
+        if (grip->tracked[f]) registered[f] = twist_about(grip->motion[f], j.axis.normalized());
+      q = search_twists(*grip_points, grip->model, j.axis, j.origin, registered);
+    }
     if (grip_decides && type == "revolute") {
       std::vector<bool> held(n, false);
       for (int f : hand_frames) held[f] = true;

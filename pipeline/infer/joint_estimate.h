@@ -220,8 +220,11 @@ std::vector<size_t> turned_about_another_axis(const Track& track);
 // (JointEstimate::type_from_name); a motion a track plainly shows outweighs it.
 // `hand_recorded`: false for a recording without the hand (no hands.txt),
 // where an operated part's motion has only its own track to show it.
+// `grip_points`: the grip's points per frame (object frame), or null; where
+// the grip gives a turn's position, its twist is searched about the hinge
+// there too (twist_search.h: a turn faster than the registration's reach).
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points,
                              bool operated = true, const PartTrack* grip = nullptr, const std::string& named = "",
-                             bool hand_recorded = true);
+                             bool hand_recorded = true, const std::vector<Cloud>* grip_points = nullptr);
 
 }  // namespace efc::pipeline
