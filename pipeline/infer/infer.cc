@@ -283,7 +283,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
         const std::vector<Cloud> clouds = grip_clouds(obs, hand_points[p], to_object);
         grips[p] = std::make_unique<PartTrack>(track_clouds(clouds, to_object, grip_tracking));
         grip_points[p] = clouds;
-        for (size_t f = 0; f < clouds.size() && f < to_object.size(); ++f) transform_cloud(to_object[f], &grip_points[p][f]);
+        for (size_t f = 0; f < clouds.size() && f < to_object.size(); ++f)
+          transform_cloud(to_object[f], &grip_points[p][f]);
       }
     };
     std::vector<std::thread> pool;

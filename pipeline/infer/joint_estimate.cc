@@ -1122,6 +1122,8 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
         q[f] = twist_about(m, j.axis);
       }
     }
+    // Where the registration fell short of a fast turn, the twist searched
+    // about the slip's axis (twist_search.h).
     if (type != "prismatic" && grip_points) q = search_twists(*grip_points, grip->model, j.axis, j.origin, q);
     // The hand's registration is ambiguous by half a turn about the knob
     // (twist_unwrap.h): its twist is unwrapped along the recording.
@@ -1168,16 +1170,19 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.origin = a.origin;
     for (size_t k = 0; k < frames.size() && k < a.q.size(); ++k)
       for (int f : frames[k]) q[f] = a.q[k];
-    // A grip's turn, like the slip's above, is right only modulo a half
-    // turn about a knob (twist_unwrap.h): a knob turned 3.8 rad read as
-    // 0.6 (seed 1's s0034). A lever's grip, far from its hinge, never
-    // lands half a turn off, and its smooth course needs no half turns.
+    // A grip's turn, as the slip's above, is searched about the hinge
+    // where the registration fell short of it (twist_search.h), from the
+    // registration's twist about the hinge, frame by frame.
     if (grip_decides && type == "revolute" && grip_points) {
       std::vector<double> registered(n, kNaN);
       for (size_t f = 0; f < grip->motion.size() && f < registered.size(); ++f)
         if (grip->tracked[f]) registered[f] = twist_about(grip->motion[f], j.axis.normalized());
       q = search_twists(*grip_points, grip->model, j.axis, j.origin, registered);
     }
+    // And it is right only modulo a half turn about a knob
+    // (twist_unwrap.h): a knob turned 3.8 rad read as 0.6 (seed 1's
+    // s0034). A lever's grip, far from its hinge, never lands half a turn
+    // off, and its smooth course needs no half turns.
     if (grip_decides && type == "revolute") {
       std::vector<bool> held(n, false);
       for (int f : hand_frames) held[f] = true;
