@@ -280,11 +280,10 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
     auto worker = [&]() {
       for (size_t k = next++; k < held.size(); k = next++) {
         const int p = held[k];
-        const std::vector<Cloud> clouds = grip_clouds(obs, hand_points[p], to_object);
+        std::vector<Cloud> clouds = grip_clouds(obs, hand_points[p], to_object);
         grips[p] = std::make_unique<PartTrack>(track_clouds(clouds, to_object, grip_tracking));
-        grip_points[p] = clouds;
-        for (size_t f = 0; f < clouds.size() && f < to_object.size(); ++f)
-          transform_cloud(to_object[f], &grip_points[p][f]);
+        for (size_t f = 0; f < clouds.size() && f < to_object.size(); ++f) transform_cloud(to_object[f], &clouds[f]);
+        grip_points[p] = std::move(clouds);
       }
     };
     std::vector<std::thread> pool;

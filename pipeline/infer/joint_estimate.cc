@@ -720,6 +720,22 @@ Eigen::Isometry3d joint_motion(const JointEstimate& j, double q) {
   return T;
 }
 
+namespace {
+
+// The p-quantile of positions sorted ascending (non-empty).
+double percentile_of_sorted(const std::vector<double>& sorted, double p) {
+  return sorted[static_cast<size_t>(p * (sorted.size() - 1))];
+}
+
+// Whether positions (sorted ascending, no NaN), 0 at rest, go further the
+// negative way than the positive: the joint was actuated backwards, read
+// on percentiles so that a few frames of tracker noise do not decide it.
+bool actuated_backwards(const std::vector<double>& sorted) {
+  return !sorted.empty() && -percentile_of_sorted(sorted, 0.02) > percentile_of_sorted(sorted, 0.98);
+}
+
+}  // namespace
+
 JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Vector3d>& hand_points, bool operated,
                              const PartTrack* grip, const std::string& named, bool hand_recorded,
                              const std::vector<Cloud>* grip_points) {
@@ -1332,13 +1348,13 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // percentiles: a few frames of tracker noise do not decide them).
   std::vector<double> sorted = q;
   std::sort(sorted.begin(), sorted.end());
-  const auto percentile = [&](double p) { return sorted[static_cast<size_t>(p * (sorted.size() - 1))]; };
+  const auto percentile = [&](double p) { return percentile_of_sorted(sorted, p); };
   // The axis's sign: actuating moves the part to positive q, from its rest
   // at q = 0 (spec v1's convention, and the runtime's: a press is s_R rising
   // through a threshold, so a counter or a latching switch read on a reversed
   // joint counts its releases). A fit's own sign (from the first sample to
   // the last) is a coin toss for a knob turned and turned back.
-  if (-percentile(0.02) > percentile(0.98)) {
+  if (actuated_backwards(sorted)) {
     j.axis = -j.axis;
     for (double& v : q) v = -v;
     std::reverse(sorted.begin(), sorted.end());
@@ -1348,15 +1364,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // the same rule on their own positions: where the part's track is its
   // registration's noise (a round knob's), its sign says nothing of the
   // hand's (seed 0's s0000 knob: the contacts read its 3.9 rad as -3.9).
-  if (!j.q_hand.empty()) {
+  {
     std::vector<double> hand_sorted;
     for (double v : j.q_hand)
       if (!std::isnan(v)) hand_sorted.push_back(v);
     std::sort(hand_sorted.begin(), hand_sorted.end());
-    const auto hand_percentile = [&](double p) {
-      return hand_sorted[static_cast<size_t>(p * (hand_sorted.size() - 1))];
-    };
-    if (!hand_sorted.empty() && -hand_percentile(0.02) > hand_percentile(0.98))
+    if (actuated_backwards(hand_sorted))
       for (double& v : j.q_hand) v = -v;  // NaN stays NaN
   }
   const int ref = track.reference_frame;
