@@ -1207,6 +1207,50 @@ TEST(PipelineInfer, AKnobTurnedFasterThanItsGripsRegistrationIsFoundAboutItsHing
   EXPECT_GT(std::abs(std::abs(registered.q[24] - registered.q[10]) - angle(24)), 1.0);  // 2.4 rad turned
 }
 
+TEST(PipelineInfer, AGripsFirstAndLastFramesAreReadWithTheFewBesideThem) {
+  // The same hidden knob, held still for 5 frames, then turned 3 rad and
+  // back twice, its grip's points turned 0.5 rad off the knob on the grip's
+  // first and last frames (the hand arriving and leaving, half seen: seed
+  // 1's s0033 power switch, whose first frame read 0.28 rad off and, as
+  // q = 0, turned its rest into a press). The knob's rest is still q = 0,
+  // before the grip, between the turns and after, and nothing reads below
+  // it.
+  const int frames = 150;
+  std::mt19937 rng(83);
+  std::normal_distribution<double> g(0, 0.0005);
+  auto angle = [](int f) {  // held still 5 frames, then as above
+    if (f < 25 || f >= 130) return 0.0;
+    const int phase = (f - 25) % 55;
+    return phase < 5 ? 0.6 * phase : phase < 25 ? 3.0 : phase < 30 ? 0.6 * (30 - phase) : 0.0;
+  };
+  double lagging = 0;
+  const PartTrack twist = grip(frames, 20, 130, [&](int f) {
+    lagging += 0.1 * (angle(f) - lagging);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(lagging, Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() += Vector3d(g(rng), g(rng), g(rng));
+    return T;
+  });
+  std::vector<Cloud> points(frames);
+  for (int f = 20; f < 130; ++f) {
+    points[f] = twist.model;
+    const double off = f == 20 || f == 129 ? 0.5 : 0.0;
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(angle(f) + off, Vector3d::UnitZ()).toRotationMatrix();
+    transform_cloud(T, &points[f]);
+  }
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) hand[f] = Vector3d(0, 0, 0.012);
+  PartTrack hidden = turning(ridged_button(), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0003, 64);
+  with_information(&hidden);
+  const JointEstimate knob = estimate_joint(hidden, hand, true, &twist, "", true, &points);
+  ASSERT_EQ(knob.source, "grip");
+  ASSERT_EQ(knob.type, "revolute");
+  ASSERT_EQ(static_cast<int>(knob.q.size()), frames);
+  for (int f : {10, 22, 27, 35, 65, 90, 120, 140}) EXPECT_NEAR(knob.q[f], angle(f), 0.1) << "frame " << f;
+  EXPECT_GT(knob.range_lo, -0.1);
+}
+
 TEST(PipelineInfer, ARockersGripSwingsAboutItsHingeNotAboutThePartsSlip) {
   // A small part whose registration only slips round an axis through itself
   // (z), pressed by a hand that swings it 0.3 rad about a hinge across it

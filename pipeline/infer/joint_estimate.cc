@@ -148,6 +148,36 @@ double median_of(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The frames a joint's position is read on at either end of what was seen:
+// its rest before (q = 0) and where it was left after.
+constexpr size_t kEndFrames = 5;
+// The end frame is a spike where it lies further from the end frames'
+// median than this many of their typical steps: a part at rest or moving
+// on steadily (a door swung from its first frame, a knob turned a radian a
+// frame) has its end frame within two steps of that median.
+constexpr double kSpikeSteps = 3;
+
+// Where a per-frame series starts (from_back: ends; NaN where nothing is
+// known): its first known value, or, where that one is a spike off the
+// few after it, their median. One frame at either end of a grip's track
+// is often the hand arriving or leaving, half seen and fitted a fraction of
+// a turn off: seed 1's s0033 power switch read 0.28 rad off on its first
+// frame, which, as q = 0, turned its rest into a press and the switch
+// backwards; its s0021 rocker's last frame, held over the 22 frames after
+// it, did the same.
+double end_value(const std::vector<double>& q, bool from_back) {
+  std::vector<double> values;
+  for (size_t k = 0; k < q.size() && values.size() < kEndFrames; ++k) {
+    const double v = q[from_back ? q.size() - 1 - k : k];
+    if (!std::isnan(v)) values.push_back(v);
+  }
+  if (values.size() < kEndFrames) return values.empty() ? kNaN : values.front();
+  std::vector<double> steps;
+  for (size_t k = 1; k + 1 < values.size(); ++k) steps.push_back(std::abs(values[k + 1] - values[k]));
+  const double middle = median_of(values);
+  return std::abs(values.front() - middle) > kSpikeSteps * median_of(steps) ? middle : values.front();
+}
+
 // The turn of motion `m` about `axis` (world frame, unit): the angle of its
 // twist in the swing-twist decomposition, in (-pi, pi].
 double twist_about(const Eigen::Isometry3d& m, const Eigen::Vector3d& axis) {
@@ -1327,14 +1357,10 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // The part's track or the grip's gave q: the hand's points' is the
   // templates' second candidate.
   if (j.source != "hand" && j.has_hand_track && hand_has_lever(j, hand_points, hand_frames)) j.q_hand = q_of_hand();
-  // q = 0 where the part was first seen; the model's reference frame maps
-  // there by the joint itself.
-  double q_first = kNaN;
-  for (double v : q)
-    if (!std::isnan(v)) {
-      q_first = v;
-      break;
-    }
+  // q = 0 where the part was first seen (end_value(): a spike there is
+  // read on the frames after it); the model's reference frame maps there by
+  // the joint itself.
+  const double q_first = end_value(q, false);
   if (std::isnan(q_first)) {
     j.type = "fixed";
     return j;
@@ -1343,6 +1369,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     if (!std::isnan(v)) v -= q_first;
   std::vector<char> measured(q.size());
   for (size_t f = 0; f < q.size(); ++f) measured[f] = !std::isnan(q[f]);
+  // Before it was first seen the part was at that rest, and after it was
+  // last seen where it was left (end_value(): a spike there is read on the
+  // frames before it).
+  const double q_last = end_value(q, true);
+  for (auto v = q.begin(); v != q.end() && std::isnan(*v); ++v) *v = 0;
+  for (auto v = q.rbegin(); v != q.rend() && std::isnan(*v); ++v) *v = q_last;
   fill_gaps(&q);
   // The positions seen, in order (the sign and the range below read their
   // percentiles: a few frames of tracker noise do not decide them).
