@@ -1161,93 +1161,82 @@ TEST(PipelineInfer, AKnobWhoseSlipTurnsItAboutALineBesideItIsReadThroughItsGrip)
   for (int f : {40, 75, 110}) EXPECT_NEAR(std::abs(knob.q[f] - knob.q[10]), angle(f), 0.15) << "frame " << f;
 }
 
-TEST(PipelineInfer, AKnobTurnedFasterThanItsGripsRegistrationIsFoundAboutItsHinge) {
-  // A hidden knob turned 3 rad and back at 0.6 rad a frame, twice; the
-  // grip's registration settles a tenth of the way from its last pose each
-  // frame (seed 0's s0045: 0.1 rad a frame for 0.9). With the
-  // grip's points (the hand turned by the true twist), the twist is
-  // searched about the hinge and the knob reads its 3 rad; without them it
-  // reads the registration's fraction.
+// A hidden knob held from frame 20 to 129 and turned 3 rad and back at
+// 0.6 rad a frame, twice, from frame `start` (up in 5 frames, held 20, back
+// in 5, at rest 25); its grip's registration settles a tenth of the way
+// from its last pose each frame (seed 0's s0045: 0.1 rad a frame for 0.9),
+// and its grip's points are the hand turned by the true twist plus
+// `off(f)`.
+struct FastTurnedKnob {
+  std::function<double(int)> angle;
+  PartTrack twist;  // the grip's registration
+  std::vector<Cloud> points;  // the grip's points per frame
+  std::vector<Vector3d> hand;
+  PartTrack hidden;  // the knob's own track: still
+};
+
+FastTurnedKnob fast_turned_knob(int start, unsigned seed, const std::function<double(int)>& off) {
   const int frames = 150;
-  std::mt19937 rng(81);
-  std::normal_distribution<double> g(0, 0.0005);
-  auto angle = [](int f) {  // up in 5 frames, held 20, back in 5, at rest 25
-    if (f < 20 || f >= 130) return 0.0;
-    const int phase = (f - 20) % 55;
+  FastTurnedKnob k;
+  k.angle = [start](int f) {
+    if (f < start || f >= 130) return 0.0;
+    const int phase = (f - start) % 55;
     return phase < 5 ? 0.6 * phase : phase < 25 ? 3.0 : phase < 30 ? 0.6 * (30 - phase) : 0.0;
   };
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0, 0.0005);
   double lagging = 0;
-  const PartTrack twist = grip(frames, 20, 130, [&](int f) {
-    lagging += 0.1 * (angle(f) - lagging);
+  k.twist = grip(frames, 20, 130, [&](int f) {
+    lagging += 0.1 * (k.angle(f) - lagging);
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.linear() = Eigen::AngleAxisd(lagging, Vector3d::UnitZ()).toRotationMatrix();
     T.translation() += Vector3d(g(rng), g(rng), g(rng));
     return T;
   });
-  std::vector<Cloud> points(frames);
+  k.points.resize(frames);
   for (int f = 20; f < 130; ++f) {
-    points[f] = twist.model;
+    k.points[f] = k.twist.model;
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(angle(f), Vector3d::UnitZ()).toRotationMatrix();
-    transform_cloud(T, &points[f]);
+    T.linear() = Eigen::AngleAxisd(k.angle(f) + off(f), Vector3d::UnitZ()).toRotationMatrix();
+    transform_cloud(T, &k.points[f]);
   }
-  std::vector<Vector3d> hand = no_hand(frames);
-  for (int f = 20; f < 130; ++f) hand[f] = Vector3d(0, 0, 0.012);
-  PartTrack hidden = turning(ridged_button(), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0003, 62);
-  with_information(&hidden);
-  const JointEstimate searched = estimate_joint(hidden, hand, true, &twist, "", true, &points);
+  k.hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) k.hand[f] = Vector3d(0, 0, 0.012);
+  k.hidden = turning(ridged_button(), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0003, seed - 19);
+  with_information(&k.hidden);
+  return k;
+}
+
+TEST(PipelineInfer, AKnobTurnedFasterThanItsGripsRegistrationIsFoundAboutItsHinge) {
+  // With the grip's points (the hand turned by the true twist), the twist
+  // is searched about the hinge and the knob reads its 3 rad; without them
+  // it reads the registration's fraction.
+  const FastTurnedKnob k = fast_turned_knob(20, 81, [](int) { return 0.0; });
+  const JointEstimate searched = estimate_joint(k.hidden, k.hand, true, &k.twist, "", true, &k.points);
   ASSERT_EQ(searched.source, "grip");
   ASSERT_EQ(searched.type, "revolute");
   EXPECT_LT(std::acos(std::min(1.0, std::abs(searched.axis.dot(Vector3d::UnitZ())))), 0.05);
   for (int f : {22, 30, 47, 60, 77, 85, 102, 115})
-    EXPECT_NEAR(std::abs(searched.q[f] - searched.q[10]), angle(f), 0.1) << "frame " << f;
+    EXPECT_NEAR(std::abs(searched.q[f] - searched.q[10]), k.angle(f), 0.1) << "frame " << f;
   EXPECT_NEAR(searched.range_hi - searched.range_lo, 3.0, 0.15);
-  const JointEstimate registered = estimate_joint(hidden, hand, true, &twist);
-  ASSERT_EQ(static_cast<int>(registered.q.size()), frames);
-  EXPECT_GT(std::abs(std::abs(registered.q[24] - registered.q[10]) - angle(24)), 1.0);  // 2.4 rad turned
+  const JointEstimate registered = estimate_joint(k.hidden, k.hand, true, &k.twist);
+  ASSERT_EQ(static_cast<int>(registered.q.size()), 150);
+  EXPECT_GT(std::abs(std::abs(registered.q[24] - registered.q[10]) - k.angle(24)), 1.0);  // 2.4 rad turned
 }
 
 TEST(PipelineInfer, AGripsFirstAndLastFramesAreReadWithTheFewBesideThem) {
-  // The same hidden knob, held still for 5 frames, then turned 3 rad and
-  // back twice, its grip's points turned 0.5 rad off the knob on the grip's
-  // first and last frames (the hand arriving and leaving, half seen: seed
-  // 1's s0033 power switch, whose first frame read 0.28 rad off and, as
-  // q = 0, turned its rest into a press). The knob's rest is still q = 0,
-  // before the grip, between the turns and after, and nothing reads below
-  // it.
-  const int frames = 150;
-  std::mt19937 rng(83);
-  std::normal_distribution<double> g(0, 0.0005);
-  auto angle = [](int f) {  // held still 5 frames, then as above
-    if (f < 25 || f >= 130) return 0.0;
-    const int phase = (f - 25) % 55;
-    return phase < 5 ? 0.6 * phase : phase < 25 ? 3.0 : phase < 30 ? 0.6 * (30 - phase) : 0.0;
-  };
-  double lagging = 0;
-  const PartTrack twist = grip(frames, 20, 130, [&](int f) {
-    lagging += 0.1 * (angle(f) - lagging);
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(lagging, Vector3d::UnitZ()).toRotationMatrix();
-    T.translation() += Vector3d(g(rng), g(rng), g(rng));
-    return T;
-  });
-  std::vector<Cloud> points(frames);
-  for (int f = 20; f < 130; ++f) {
-    points[f] = twist.model;
-    const double off = f == 20 || f == 129 ? 0.5 : 0.0;
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(angle(f) + off, Vector3d::UnitZ()).toRotationMatrix();
-    transform_cloud(T, &points[f]);
-  }
-  std::vector<Vector3d> hand = no_hand(frames);
-  for (int f = 20; f < 130; ++f) hand[f] = Vector3d(0, 0, 0.012);
-  PartTrack hidden = turning(ridged_button(), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0003, 64);
-  with_information(&hidden);
-  const JointEstimate knob = estimate_joint(hidden, hand, true, &twist, "", true, &points);
+  // The same knob, held still for its first 5 frames, its grip's points
+  // turned 0.5 rad off the knob on the grip's first and last frames (the
+  // hand arriving and leaving, half seen: seed 1's s0033 power switch,
+  // whose first frame read 0.28 rad off and, as q = 0, turned its rest
+  // into a press). The knob's rest is still q = 0, before the grip, between
+  // the turns and after, and nothing reads below it.
+  const FastTurnedKnob k = fast_turned_knob(25, 83, [](int f) { return f == 20 || f == 129 ? 0.5 : 0.0; });
+  const JointEstimate knob = estimate_joint(k.hidden, k.hand, true, &k.twist, "", true, &k.points);
   ASSERT_EQ(knob.source, "grip");
   ASSERT_EQ(knob.type, "revolute");
-  ASSERT_EQ(static_cast<int>(knob.q.size()), frames);
-  for (int f : {10, 22, 27, 35, 65, 90, 120, 140}) EXPECT_NEAR(knob.q[f], angle(f), 0.1) << "frame " << f;
+  ASSERT_EQ(static_cast<int>(knob.q.size()), 150);
+  for (int f : {10, 22, 27, 35, 65, 90, 120, 140}) EXPECT_NEAR(knob.q[f], k.angle(f), 0.1) << "frame " << f;
   EXPECT_GT(knob.range_lo, -0.1);
 }
 
