@@ -23,9 +23,9 @@ constexpr int kHandBin = 8;
 
 double bic_of(const ModelFit& f) { return f.valid ? f.bic : std::numeric_limits<double>::infinity(); }
 
-// Fills the gaps of a per-frame series: linear between known values, held
-// before the first and after the last.
-void fill_gaps(std::vector<double>* q) {
+// Fills the gaps of a per-frame series: linear between known values,
+// `before` before the first and `after` after the last.
+void fill_gaps(std::vector<double>* q, double before, double after) {
   const int n = static_cast<int>(q->size());
   int last = -1;
   for (int f = 0; f < n; ++f) {
@@ -34,11 +34,11 @@ void fill_gaps(std::vector<double>* q) {
       for (int g = last + 1; g < f; ++g)
         (*q)[g] = (*q)[last] + ((*q)[f] - (*q)[last]) * (g - last) / double(f - last);
     else if (last < 0)
-      for (int g = 0; g < f; ++g) (*q)[g] = (*q)[f];
+      for (int g = 0; g < f; ++g) (*q)[g] = before;
     last = f;
   }
   if (last >= 0)
-    for (int g = last + 1; g < n; ++g) (*q)[g] = (*q)[last];
+    for (int g = last + 1; g < n; ++g) (*q)[g] = after;
 }
 
 // A point's offset from the axis line, across the axis.
@@ -1372,10 +1372,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // Before it was first seen the part was at that rest, and after it was
   // last seen where it was left (end_value(): a spike there is read on the
   // frames before it).
-  const double q_last = end_value(q, true);
-  for (auto v = q.begin(); v != q.end() && std::isnan(*v); ++v) *v = 0;
-  for (auto v = q.rbegin(); v != q.rend() && std::isnan(*v); ++v) *v = q_last;
-  fill_gaps(&q);
+  fill_gaps(&q, 0.0, end_value(q, true));
   // The positions seen, in order (the sign and the range below read their
   // percentiles: a few frames of tracker noise do not decide them).
   std::vector<double> sorted = q;
