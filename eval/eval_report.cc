@@ -43,6 +43,8 @@ nlohmann::json pair_to_json(const PairResult& r, const std::string& pred, const 
                            {"axis_error_rad", jr.score.axis_error_rad},
                            {"origin_error_m", jr.score.origin_error_m},
                            {"failed", jr.score.failed}});
+  j["fixed_parts"] = r.fixed_parts;
+  j["spurious_joints"] = r.spurious_joints;
   j["functions"] = nlohmann::json::array();
   for (const FunctionResult& f : r.functions)
     j["functions"].push_back({{"name", f.name},
@@ -70,7 +72,10 @@ nlohmann::json aggregate_to_json(const Aggregate& a) {
                        {"type_accuracy_pct", number_or_null(a.type_accuracy_pct)},
                        {"axis_error_rad_mean", number_or_null(a.axis_error_rad_mean)},
                        {"origin_error_m_mean", number_or_null(a.origin_error_m_mean)},
-                       {"failure_rate_pct", number_or_null(a.failure_rate_pct)}};
+                       {"failure_rate_pct", number_or_null(a.failure_rate_pct)},
+                       {"fixed_parts", a.fixed_parts},
+                       {"spurious_joints", a.spurious_joints},
+                       {"spurious_joint_rate_pct", number_or_null(a.spurious_joint_rate_pct)}};
   j["reconstruction"] = {{"parts", a.chamfer_parts},
                          {"chamfer_m2_median", number_or_null(a.chamfer_m2_median)},
                          {"chamfer_m2_mean", number_or_null(a.chamfer_m2_mean)}};
@@ -101,6 +106,10 @@ std::string pair_to_text(const PairResult& r, const std::string& pred, const std
     out += row({j.part, j.score.failed ? "failed" : j.score.type_correct ? "right" : "wrong",
                 figure(j.score.axis_error_rad, "%.4f"), figure(j.score.origin_error_m, "%.4f")},
                w);
+  out += "fixed parts (" + std::to_string(r.fixed_parts) + "), predicted movable: ";
+  if (r.spurious_joints.empty()) out += "none";
+  for (size_t i = 0; i < r.spurious_joints.size(); ++i) out += (i ? ", " : "") + r.spurious_joints[i];
+  out += "\n";
   out += "functions (" + std::to_string(r.functions.size()) + ")\n";
   out += row({"name", "effect", "mapping", "both", "masks ok"}, {16, 8, 8, 8});
   for (const FunctionResult& f : r.functions)
@@ -125,6 +134,8 @@ std::string aggregate_to_text(const Aggregate& a) {
   out += row({figure(a.type_accuracy_pct, "%.1f"), figure(a.axis_error_rad_mean, "%.4f"),
               figure(a.origin_error_m_mean, "%.4f"), figure(a.failure_rate_pct, "%.1f")},
              {14, 14, 14});
+  out += "fixed parts predicted movable: " + std::to_string(a.spurious_joints) + " of " +
+         std::to_string(a.fixed_parts) + " (" + figure(a.spurious_joint_rate_pct, "%.1f") + " %)\n";
   out += "Reconstruction (" + count(a.chamfer_parts, "part") + ")\n";
   out += row({"CD median m^2", "CD mean m^2"}, {14});
   out += row({figure(a.chamfer_m2_median, "%.3g"), figure(a.chamfer_m2_mean, "%.3g")}, {14});

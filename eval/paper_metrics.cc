@@ -38,7 +38,14 @@ const Function* match_function(const Function& f, const Object& gt, const Object
 void score_joints(const PlacedSpec& gt, const PlacedSpec* pred, PairResult* r) {
   for (size_t g = 0; g < gt.object.parts.size(); ++g) {
     const Part& part = gt.object.parts[g];
-    if (!part.joint || !part.joint->movable()) continue;
+    if (!part.joint) continue;  // the root
+    if (!part.joint->movable()) {
+      ++r->fixed_parts;
+      if (!pred || r->matched_part[g].empty()) continue;
+      const Part& pp = pred->object.parts[pred->object.find_part(r->matched_part[g])];
+      if (pp.joint && pp.joint->movable()) r->spurious_joints.push_back(part.name);
+      continue;
+    }
     JointResult jr{part.name, JointScore{}};  // the failure values unless a movable prediction exists
     if (pred && !r->matched_part[g].empty()) {
       const Part& pp = pred->object.parts[pred->object.find_part(r->matched_part[g])];
@@ -151,6 +158,8 @@ Aggregate aggregate(const std::vector<PairResult>& pairs) {
       axis.push_back(j.score.axis_error_rad);
       origin.push_back(j.score.origin_error_m);
     }
+    a.fixed_parts += p.fixed_parts;
+    a.spurious_joints += static_cast<int>(p.spurious_joints.size());
     for (const FunctionResult& f : p.functions) {
       ++a.functions;
       effect += f.effect_correct, mapping += f.mapping_correct, overall += f.correct();
@@ -172,6 +181,7 @@ Aggregate aggregate(const std::vector<PairResult>& pairs) {
   a.axis_error_rad_mean = mean(axis);
   a.origin_error_m_mean = mean(origin);
   a.failure_rate_pct = ratio_pct(a.failed_joints, a.joints);
+  a.spurious_joint_rate_pct = ratio_pct(a.spurious_joints, a.fixed_parts);
   a.chamfer_m2_median = median(chamfer);
   a.chamfer_m2_mean = mean(chamfer);
   a.effect_accuracy_pct = ratio_pct(effect, a.functions);

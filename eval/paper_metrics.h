@@ -47,6 +47,12 @@ struct PairResult {
   std::string prediction_problem;        // why not, one line
   std::vector<std::string> matched_part; // per true part: the predicted part's name, "" for none
   std::vector<JointResult> joints;       // every movable joint of the truth
+  // The truth's fixed parts (a joint that does not move; not the root), and
+  // those of them whose predicted part moves: the paper's type accuracy
+  // scores the truth's movable joints only, so a spout or a lamp that the
+  // prediction lets slide or turn is counted here instead.
+  int fixed_parts = 0;
+  std::vector<std::string> spurious_joints;
   std::vector<FunctionResult> functions; // every function of the truth
   std::vector<ChamferResult> chamfer;    // every part of the truth
   std::optional<std::vector<MaskScore>> masks;  // none: no masks given
@@ -67,6 +73,8 @@ bool add_mask_scores(const seq::Sequence& truth, const std::string& pred_masks_d
 struct Aggregate {
   bool masks_given = false;  // some pair had masks: the gated figures and the mask table mean something
   int pairs = 0, joints = 0, failed_joints = 0, functions = 0, chamfer_parts = 0, mask_parts = 0;
+  int fixed_parts = 0, spurious_joints = 0;      // PairResult's, pooled
+  std::optional<double> spurious_joint_rate_pct;  // spurious_joints / fixed_parts
   std::optional<double> type_accuracy_pct, axis_error_rad_mean, origin_error_m_mean, failure_rate_pct;
   std::optional<double> chamfer_m2_median, chamfer_m2_mean;
   // Raw: every function; gated: correct only where both masks succeed.

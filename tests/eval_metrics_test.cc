@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "eval/chamfer.h"
+#include "eval/eval_report.h"
 #include "eval/pair_list.h"
 #include "eval/paper_metrics.h"
 #include "eval/part_matching.h"
@@ -213,6 +214,8 @@ TEST(EvaluatePair, ASpecAgainstItselfScoresPerfectly) {
   const PlacedSpec gt = lamp();
   const PairResult r = evaluate_pair(gt, &gt, EvalOptions{});
   ASSERT_EQ(r.joints.size(), 1u);  // the fixed bulb is no joint to score
+  EXPECT_EQ(r.fixed_parts, 1);      // but a fixed part the prediction kept fixed
+  EXPECT_TRUE(r.spurious_joints.empty());
   EXPECT_TRUE(r.joints[0].score.type_correct);
   EXPECT_EQ(r.joints[0].score.axis_error_rad, 0);
   EXPECT_EQ(r.joints[0].score.origin_error_m, 0);
@@ -259,6 +262,29 @@ TEST(EvaluatePair, APartWithoutAMovableJointIsAFailure) {
   EXPECT_EQ(r.joints[0].score.axis_error_rad, kHalfPi);
   EXPECT_TRUE(r.functions[0].effect_correct);
   EXPECT_FALSE(r.functions[0].mapping_correct);
+}
+
+// The truth's fixed bulb, predicted turning: the type accuracy (movable
+// joints of the truth) cannot see it; the spurious joints do.
+TEST(EvaluatePair, AFixedPartPredictedMovableIsASpuriousJoint) {
+  PlacedSpec gt = lamp(), pred = lamp();
+  pred.object.parts[2].joint->type = JointType::Revolute;
+  const PairResult r = evaluate_pair(gt, &pred, EvalOptions{});
+  ASSERT_EQ(r.joints.size(), 1u);
+  EXPECT_TRUE(r.joints[0].score.type_correct);
+  EXPECT_EQ(r.fixed_parts, 1);
+  EXPECT_EQ(r.spurious_joints, std::vector<std::string>{"bulb"});
+  const Aggregate a = aggregate({r, evaluate_pair(gt, &gt, EvalOptions{}), evaluate_pair(gt, nullptr, EvalOptions{})});
+  EXPECT_EQ(a.fixed_parts, 3);
+  EXPECT_EQ(a.spurious_joints, 1);  // a failed prediction moves nothing
+  EXPECT_NEAR(*a.spurious_joint_rate_pct, 100.0 / 3, 1e-12);
+  EXPECT_DOUBLE_EQ(*a.type_accuracy_pct, 200.0 / 3);
+  const nlohmann::json j = aggregate_to_json(a);
+  EXPECT_EQ(j["articulation"]["spurious_joints"], 1);
+  EXPECT_EQ(j["articulation"]["fixed_parts"], 3);
+  EXPECT_EQ(pair_to_json(r, "p", "g")["spurious_joints"], nlohmann::json::array({"bulb"}));
+  EXPECT_NE(pair_to_text(r, "p", "g").find("predicted movable: bulb"), std::string::npos);
+  EXPECT_NE(aggregate_to_text(a).find("fixed parts predicted movable: 1 of 3"), std::string::npos);
 }
 
 TEST(Aggregate, MeansMedianAndGating) {
