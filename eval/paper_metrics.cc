@@ -35,24 +35,27 @@ const Function* match_function(const Function& f, const Object& gt, const Object
   return nullptr;
 }
 
+// The predicted part matched to true part g, where it has a joint that moves.
+const Part* moving_prediction(const PlacedSpec* pred, const PairResult& r, size_t g) {
+  if (!pred || r.matched_part[g].empty()) return nullptr;
+  const Part& pp = pred->object.parts[pred->object.find_part(r.matched_part[g])];
+  return pp.joint && pp.joint->movable() ? &pp : nullptr;
+}
+
 void score_joints(const PlacedSpec& gt, const PlacedSpec* pred, PairResult* r) {
   for (size_t g = 0; g < gt.object.parts.size(); ++g) {
     const Part& part = gt.object.parts[g];
     if (!part.joint) continue;  // the root
+    const Part* pp = moving_prediction(pred, *r, g);
     if (!part.joint->movable()) {
       ++r->fixed_parts;
-      if (!pred || r->matched_part[g].empty()) continue;
-      const Part& pp = pred->object.parts[pred->object.find_part(r->matched_part[g])];
-      if (pp.joint && pp.joint->movable()) r->spurious_joints.push_back(part.name);
+      if (pp) r->spurious_joints.push_back(part.name);
       continue;
     }
     JointResult jr{part.name, JointScore{}};  // the failure values unless a movable prediction exists
-    if (pred && !r->matched_part[g].empty()) {
-      const Part& pp = pred->object.parts[pred->object.find_part(r->matched_part[g])];
-      if (pp.joint && pp.joint->movable())
-        jr.score = score_joint(pp.joint->type, world_axis(*pp.joint, pred->world), part.joint->type,
-                               world_axis(*part.joint, gt.world));
-    }
+    if (pp)
+      jr.score = score_joint(pp->joint->type, world_axis(*pp->joint, pred->world), part.joint->type,
+                             world_axis(*part.joint, gt.world));
     r->joints.push_back(jr);
   }
 }
