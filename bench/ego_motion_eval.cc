@@ -6,8 +6,8 @@
 // Each argument is a sequence folder (with truth/poses.txt, as efc synth
 // writes) or a suite folder (every */seq inside). For each sequence the
 // camera poses are refined as efc infer refines them (observe, then
-// refine_ego_motion on the 'object' parts and, unless --no-background, the
-// room), and compared with the true poses: the error of frame f is
+// refine_ego_motion on the 'object' parts, the 'effector' parts at their
+// reduced share and, unless --no-background, the room), and compared with the true poses: the error of frame f is
 // E_f = T_true,f T_est,f^-1, less the mean of all E_f (the refined world is
 // anchored on the first frames, so it may differ from the true one by a
 // constant). Reported per sequence, for poses.txt as given ("tracker") and
@@ -122,10 +122,13 @@ int main(int argc, char** argv) {
       diags.print(std::cerr, false);
       return 1;
     }
-    std::vector<int> static_parts;
-    for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p)
+    std::vector<int> static_parts, effectors;
+    for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
       if (obs.parts[p].role == "object") static_parts.push_back(p);
-    const efc::pipeline::EgoMotion ego = efc::pipeline::refine_ego_motion(obs, static_parts, observe.threads, nullptr);
+      if (obs.parts[p].role == "effector") effectors.push_back(p);
+    }
+    const efc::pipeline::EgoMotion ego =
+        efc::pipeline::refine_ego_motion(obs, static_parts, observe.threads, nullptr, effectors);
     std::vector<Eigen::Isometry3d> truth, refined;
     for (const auto& p : true_poses) truth.push_back(pose_to_isometry(p));
     for (size_t f = 0; f < obs.camera_to_world.size() && f < ego.correction.size(); ++f)

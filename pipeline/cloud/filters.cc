@@ -39,6 +39,20 @@ Cloud select(const Cloud& cloud, const std::vector<bool>& keep) {
 
 }  // namespace
 
+void thin(Cloud* cloud, int max_points) {
+  if (max_points <= 0 || static_cast<int>(cloud->size()) <= max_points) return;
+  const double step = static_cast<double>(cloud->size()) / max_points;
+  Cloud out;
+  out.points.reserve(max_points);
+  if (cloud->has_normals()) out.normals.reserve(max_points);
+  for (int i = 0; i < max_points; ++i) {
+    const size_t k = static_cast<size_t>(i * step);
+    out.points.push_back(cloud->points[k]);
+    if (cloud->has_normals()) out.normals.push_back(cloud->normals[k]);
+  }
+  *cloud = std::move(out);
+}
+
 Cloud voxel_downsample(const Cloud& cloud, double voxel) {
   if (!(voxel > 0) || !std::isfinite(voxel)) return finite_only(cloud);
   struct Acc {

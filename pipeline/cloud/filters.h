@@ -9,6 +9,10 @@
 
 namespace efc::pipeline {
 
+// Every k-th point, so that at most max_points remain: deterministic and
+// spread over the whole cloud (normals kept with their points).
+// max_points <= 0 or a cloud that small already: unchanged.
+void thin(Cloud* cloud, int max_points);
 // Centroid per occupied voxel; normals averaged then normalised. Voxels come
 // out in the order their first point came in. voxel not > 0: a copy of the
 // finite points.

@@ -40,17 +40,37 @@ Eigen::Isometry3d mean_transform(const std::vector<Eigen::Isometry3d>& transform
 
 namespace {
 
+// The parts the camera is registered on: the body (role object) and the
+// parts that are still most of the time (effectors: most never move).
+struct RegisteredParts {
+  const std::vector<int>& body;
+  const std::vector<int>& mostly_still;
+};
+
+// A mostly-still part counts for at most this share of a frame's points
+// besides it: where the body and the room constrain the camera, one that
+// moves (a lid opening) pulls it little; where they leave a direction
+// nearly free, it is what holds the camera there.
+constexpr double kMostlyStillShare = 0.3;
+
 Cloud static_cloud(const Observations& obs, const std::vector<int>& parts, int frame) {
   Cloud c;
   for (int p : parts) c = concatenate(c, obs.parts[p].clouds[frame]);
   return c;
 }
 
-// What the camera is registered on: the static parts and the room around
-// them (Observations::background).
-Cloud scene_cloud(const Observations& obs, const std::vector<int>& parts, int frame) {
-  Cloud c = static_cloud(obs, parts, frame);
+// What the camera is registered on: the static parts, the room around
+// them (Observations::background) and the mostly-still parts, thinned to
+// kMostlyStillShare of the rest together.
+Cloud scene_cloud(const Observations& obs, const RegisteredParts& parts, int frame) {
+  Cloud c = static_cloud(obs, parts.body, frame);
   if (frame < static_cast<int>(obs.background.size())) c = concatenate(c, obs.background[frame]);
+  Cloud still = static_cloud(obs, parts.mostly_still, frame);
+  if (still.size() > 0) {
+    // At least one point: thin() leaves a cloud alone for a limit of 0.
+    thin(&still, std::max(1, static_cast<int>(kMostlyStillShare * static_cast<double>(c.size()))));
+    c = concatenate(c, still);
+  }
   return c;
 }
 
@@ -71,7 +91,7 @@ Cloud fuse_registered(const EgoMotion& ego, const CloudOf& cloud_of) {
 }
 
 // Registers one frame onto `model` from `init`.
-void register_one(const Observations& obs, const std::vector<int>& parts, const Cloud& model, const KdTree& tree,
+void register_one(const Observations& obs, const RegisteredParts& parts, const Cloud& model, const KdTree& tree,
                   const IcpOptions& icp, bool coarse_first, int f, const Eigen::Isometry3d& init, EgoMotion* out) {
   const Cloud c = scene_cloud(obs, parts, f);
   if (c.size() < 50) {
@@ -106,7 +126,7 @@ void register_one(const Observations& obs, const std::vector<int>& parts, const 
 // recording, where the tracker was off by 1.4 cm). A frame that does not
 // register from its own pose is tried again from its registered neighbour's
 // correction (a fast turn).
-void register_from_tracker(const Observations& obs, const std::vector<int>& parts, const Cloud& model,
+void register_from_tracker(const Observations& obs, const RegisteredParts& parts, const Cloud& model,
                            const IcpOptions& icp, int reference, EgoMotion* out) {
   const KdTree tree(model.points);
   const int n = static_cast<int>(obs.times.size());
@@ -122,7 +142,7 @@ void register_from_tracker(const Observations& obs, const std::vector<int>& part
 
 // Pass 2: every frame onto the fused model from its pass-1 correction; the
 // frames are independent now, so they run in parallel.
-void register_refined(const Observations& obs, const std::vector<int>& parts, const Cloud& model,
+void register_refined(const Observations& obs, const RegisteredParts& parts, const Cloud& model,
                       const IcpOptions& icp, int threads, EgoMotion* out) {
   const KdTree tree(model.points);
   const int n = static_cast<int>(obs.times.size());
@@ -140,7 +160,8 @@ void register_refined(const Observations& obs, const std::vector<int>& parts, co
 }  // namespace
 
 EgoMotion refine_ego_motion(const Observations& obs, const std::vector<int>& static_parts, int threads,
-                            const ProgressFn& progress) {
+                            const ProgressFn& progress, const std::vector<int>& mostly_still_parts) {
+  const RegisteredParts registered{static_parts, mostly_still_parts};
   const auto start = std::chrono::steady_clock::now();
   EgoMotion out;
   const int n = static_cast<int>(obs.times.size());
@@ -166,16 +187,16 @@ EgoMotion refine_ego_motion(const Observations& obs, const std::vector<int>& sta
   icp.subsample = 1500;
 
   // Pass 1: onto the reference frame's points.
-  Cloud model = scene_cloud(obs, static_parts, out.reference_frame);
-  register_from_tracker(obs, static_parts, model, icp, out.reference_frame, &out);
+  Cloud model = scene_cloud(obs, registered, out.reference_frame);
+  register_from_tracker(obs, registered, model, icp, out.reference_frame, &out);
   if (progress) progress("infer: camera poses registered (pass 1)");
 
   // Pass 2: onto every registered frame fused (a surface seen from all
   // sides, not one view's).
-  Cloud fused = fuse_registered(out, [&](int f) { return scene_cloud(obs, static_parts, f); });
+  Cloud fused = fuse_registered(out, [&](int f) { return scene_cloud(obs, registered, f); });
   if (fused.size() >= 200 && fused.has_normals()) {
     model = std::move(fused);
-    register_refined(obs, static_parts, model, icp, threads, &out);
+    register_refined(obs, registered, model, icp, threads, &out);
   }
   if (progress) progress("infer: camera poses registered (pass 2)");
 

@@ -169,7 +169,14 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
                   "no part has the role 'object': '" + obs.parts[best].name +
                       "' (seen most) is taken as the static body the camera is registered on");
   }
-  const EgoMotion ego = refine_ego_motion(obs, static_parts, std::max(1, options.observe.threads), progress);
+  // Effectors are registered on too, at a fraction of the body's weight
+  // (ego_motion.h): most never move, and a small one beside the body holds
+  // a direction the body's faces leave nearly free.
+  std::vector<int> effectors;
+  for (int p : moving_parts)
+    if (obs.parts[p].role == "effector") effectors.push_back(p);
+  const EgoMotion ego =
+      refine_ego_motion(obs, static_parts, std::max(1, options.observe.threads), progress, effectors);
   if (ego.model.size() < 100) {
     diags.error("E1057", sequence.dir(), 0, 0, "",
                 "the static parts are not seen well enough to register the camera on them (" +

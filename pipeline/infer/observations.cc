@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "pipeline/cloud/depth_points.h"
+#include "pipeline/cloud/filters.h"
 #include "pipeline/infer/motion_masks.h"
 
 namespace efc::pipeline {
@@ -18,22 +19,6 @@ Eigen::Isometry3d pose_to_isometry(const seq::Pose& pose) {
 }
 
 namespace {
-
-// Every k-th point, so a large part does not dominate memory and ICP time;
-// deterministic, spread over the whole mask.
-void thin(Cloud* cloud, int max_points) {
-  if (max_points <= 0 || static_cast<int>(cloud->size()) <= max_points) return;
-  const double step = static_cast<double>(cloud->size()) / max_points;
-  Cloud out;
-  out.points.reserve(max_points);
-  if (cloud->has_normals()) out.normals.reserve(max_points);
-  for (int i = 0; i < max_points; ++i) {
-    const size_t k = static_cast<size_t>(i * step);
-    out.points.push_back(cloud->points[k]);
-    if (cloud->has_normals()) out.normals.push_back(cloud->normals[k]);
-  }
-  *cloud = std::move(out);
-}
 
 // The pixels outside `mask` within `radius` of it (a square
 // neighbourhood), looked for only about the mask's bounding box: per row,
