@@ -133,22 +133,25 @@ Cloud spout() {  // a 6 cm cube standing out of the face at x = 0.1
   return c;
 }
 
-// The tracker slides 1.5 cm along the face after the first second; an
-// effector that moves (`lid_moves`) slides 5 mm along x itself from frame
-// 40 on (near enough for its points to stay pairs: it pulls).
+// The tracker's error in frame f: none in the first second, then a slide
+// of 1.5 cm along the face.
+Eigen::Isometry3d slide_error(int f) {
+  Eigen::Isometry3d E = Eigen::Isometry3d::Identity();
+  E.translation() = Vector3d(0.015 * std::clamp((f - 30) / 10.0, 0.0, 1.0), 0, 0);
+  return E;
+}
+
+// Frames seen through slide_error; an effector that moves (`lid_moves`)
+// slides 5 mm along x itself from frame 40 on (near enough for its points
+// to stay pairs: it pulls).
 Observations slide_recording(bool cabinet, bool lid_moves) {
   Observations obs;
   const int n = 60;
   std::mt19937 rng(11);
   std::normal_distribution<double> noise(0, 0.001);
-  auto error = [](int f) {
-    Eigen::Isometry3d E = Eigen::Isometry3d::Identity();
-    E.translation() = Vector3d(0.015 * std::clamp((f - 30) / 10.0, 0.0, 1.0), 0, 0);
-    return E;
-  };
   auto seen = [&](Cloud c, int f, const Vector3d& moved) {
     for (Vector3d& p : c.points) p += moved + Vector3d(noise(rng), noise(rng), noise(rng));
-    transform_cloud(error(f).inverse(), &c);
+    transform_cloud(slide_error(f).inverse(), &c);
     return c;
   };
   Cloud floor;
@@ -177,9 +180,8 @@ double worst_slide(const EgoMotion& ego) {
   double worst = 0;
   const Vector3d centre(0, 0, 0.35);
   for (size_t f = 0; f < ego.correction.size(); ++f) {
-    Eigen::Isometry3d E = Eigen::Isometry3d::Identity();
-    E.translation() = Vector3d(0.015 * std::clamp((static_cast<int>(f) - 30) / 10.0, 0.0, 1.0), 0, 0);
-    worst = std::max(worst, ((E * ego.correction[f].inverse()) * centre - centre).norm());
+    const Eigen::Isometry3d residual = slide_error(static_cast<int>(f)) * ego.correction[f].inverse();
+    worst = std::max(worst, (residual * centre - centre).norm());
   }
   return worst;
 }
