@@ -9,7 +9,8 @@
 // camera registered as efc infer does it; then every part with a joint in
 // truth/spec.json is tracked (track_part) in the refined world frame and its
 // joint estimated (estimate_joint, with the hand's contacts and, for a
-// receptor the hand holds, the grip's track, as efc infer does). The true motion
+// receptor the hand holds, the grip's track and its points, as efc infer
+// does). The true motion
 // of the part from the track's reference frame to frame f follows from
 // truth/joints.csv and the true joints (chained through moving parents).
 // Per part, one line: the true joint type and travel (max rotation deg, max
@@ -27,7 +28,12 @@
 // the grip's twist about the true axis and slide along it. --axes: under each
 // part, how far (deg) the chosen joint's axis and the part's, the hand's and
 // the grip's fitted axes lie off the true axis, and the track the geometry
-// came from.
+// came from. --twists: under each held receptor that turns, how far (deg, 90th
+// percentile over the frames with a twist, after the better sign and the
+// median offset) the grip's twist about the TRUE hinge lies from the truth,
+// as efc infer's twist search and half-turn unwrapping give it
+// (twist_search.h, twist_unwrap.h) and as the registration alone gives it:
+// the receptor's state, apart from any error in the hinge.
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -37,6 +43,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -52,6 +59,8 @@
 #include "pipeline/infer/joint_names.h"
 #include "pipeline/infer/observations.h"
 #include "pipeline/infer/part_tracking.h"
+#include "pipeline/infer/twist_search.h"
+#include "pipeline/infer/twist_unwrap.h"
 #include "bench/truth_sequences.h"
 #include "sequence/sequence.h"
 
@@ -126,14 +135,64 @@ Eigen::Isometry3d matrix16(const json& m) {
   return T;
 }
 
+// The p90 error (rad) of a twist estimate against the truth, over the frames
+// it has one, after the better sign and the median offset.
+double twist_error_p90(const std::vector<double>& twist, const std::vector<std::map<std::string, double>>& q_rows,
+                       const std::string& name, size_t* frames) {
+  double best = std::numeric_limits<double>::infinity();
+  for (double sign : {1.0, -1.0}) {
+    std::vector<double> d;
+    for (size_t f = 0; f < twist.size() && f < q_rows.size(); ++f) {
+      const auto q = q_rows[f].find(name);
+      if (std::isfinite(twist[f]) && q != q_rows[f].end()) d.push_back(sign * twist[f] - q->second);
+    }
+    *frames = d.size();
+    if (d.empty()) return std::numeric_limits<double>::quiet_NaN();
+    const double offset = percentile(d, 0.5);
+    for (double& x : d) x = std::abs(x - offset);
+    best = std::min(best, percentile(d, 0.9));
+  }
+  return best;
+}
+
+// --twists: the grip's twist about the true hinge (world frame), searched
+// and unwrapped as efc infer does, and the registration's alone.
+void print_twist_errors(const std::vector<efc::pipeline::Cloud>& clouds, const std::vector<Eigen::Vector3d>& contacts,
+                        const efc::pipeline::PartTrack& grip, const Eigen::Vector3d& origin,
+                        const Eigen::Vector3d& axis, const std::vector<std::map<std::string, double>>& q_rows,
+                        const std::string& name, const efc::pipeline::JointEstimate& est) {
+  const size_t n = clouds.size();
+  std::vector<double> registered(n, std::numeric_limits<double>::quiet_NaN());
+  std::vector<bool> held(n, false);
+  for (size_t f = 0; f < n && f < grip.motion.size(); ++f) {
+    held[f] = f < contacts.size() && !std::isnan(contacts[f].x());
+    if (!grip.tracked[f]) continue;
+    Eigen::Quaterniond r(grip.motion[f].linear());
+    if (r.w() < 0) r.coeffs() = -r.coeffs();
+    registered[f] = 2 * std::atan2(r.vec().dot(axis), r.w());
+  }
+  std::vector<double> searched = efc::pipeline::search_twists(clouds, grip.model, axis, origin, registered);
+  searched = efc::pipeline::unwrap_half_turns(searched, held, efc::pipeline::kRegraspFrames);
+  size_t frames_searched = 0, frames_registered = 0;
+  const double e_searched = twist_error_p90(searched, q_rows, name, &frames_searched);
+  const double e_registered = twist_error_p90(registered, q_rows, name, &frames_registered);
+  size_t frames_estimated = 0;
+  std::vector<double> estimated = est.q_seen;
+  const double e_estimated = twist_error_p90(estimated, q_rows, name, &frames_estimated);
+  std::printf("  twist about the true hinge, p90 error (deg): searched %.1f over %zu frames, registered %.1f over %zu;"
+              " estimate_joint's state %.1f over %zu (%s, from the %s)\n",
+              e_searched * kDeg, frames_searched, e_registered * kDeg, frames_registered, e_estimated * kDeg,
+              frames_estimated, est.type.c_str(), est.source.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const char* usage = "usage: part_motion_eval SUITE_OR_SEQUENCE... [--threads T] [--part NAME] [--frames] [--axes]\n";
+  const char* usage = "usage: part_motion_eval SUITE_OR_SEQUENCE... [--threads T] [--part NAME] [--frames] [--axes] [--twists]\n";
   std::vector<fs::path> sequences;
   efc::pipeline::ObserveOptions observe;
   std::string only_part;
-  bool per_frame = false, axes = false;
+  bool per_frame = false, axes = false, twists = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--threads" && i + 1 < argc) {
@@ -142,6 +201,8 @@ int main(int argc, char** argv) {
       per_frame = true;
     } else if (a == "--axes") {
       axes = true;
+    } else if (a == "--twists") {
+      twists = true;
     } else if (a == "--part" && i + 1 < argc) {
       only_part = argv[++i];
     } else if (a == "-h" || a == "--help") {
@@ -236,8 +297,17 @@ int main(int argc, char** argv) {
       const std::string& name = obs.parts[p].name;
       const std::string true_type = joints[name].type;
       const efc::pipeline::PartTrack* grip = grips[p].get();
+      // The grip's points per frame in the refined world, for the twist
+      // search about the hinge (as efc infer passes them).
+      std::vector<efc::pipeline::Cloud> grip_points;
+      if (grip) {
+        grip_points = efc::pipeline::grip_clouds(obs, hand_points[p], to_world);
+        for (size_t f = 0; f < grip_points.size() && f < to_world.size(); ++f)
+          efc::pipeline::transform_cloud(to_world[f], &grip_points[f]);
+      }
       const efc::pipeline::JointEstimate est =
-          efc::pipeline::estimate_joint(track, hand_points[p], operated(p), grip, efc::pipeline::joint_named(name));
+          efc::pipeline::estimate_joint(track, hand_points[p], operated(p), grip, efc::pipeline::joint_named(name),
+                                        true, grip ? &grip_points : nullptr);
       // The true axis in the world frame and the grip's centre: the grip's
       // twist about that axis and its slide along it, per frame (--frames).
       const Eigen::Vector3d true_axis = (object_to_world.linear() * joints[name].axis).normalized();
@@ -324,6 +394,9 @@ int main(int argc, char** argv) {
                     off(est.has_grip_track, est.from_grip.type, est.from_grip.axis).c_str(), est.hand_samples,
                     est.has_grip_track ? est.from_grip.samples : size_t{0});
       }
+      if (twists && grip && turns(true_type) && grip->reference_frame >= 0)
+        print_twist_errors(grip_points, hand_points[p], *grip, object_to_world * joints[name].origin, true_axis,
+                           q_rows, name, est);
       std::fflush(stdout);
     }
   }
