@@ -75,6 +75,7 @@ ojson joint_report(const JointEstimate& j) {
   if (j.grip_with_hand) r["grip_with_hand"] = true;
   if (j.grip_swings_past_slip) r["grip_swings_past_slip"] = true;
   if (j.hinge_from_grip) r["hinge_from_grip"] = true;
+  if (j.state_from_grip) r["state_from_grip"] = true;
   if (j.plain_slide) r["plain_slide"] = true;
   if (j.hand_slides_along) r["hand_slides_along"] = true;
   if (j.axis_from_part) r["axis_from_part"] = true;

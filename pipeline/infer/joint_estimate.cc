@@ -650,6 +650,9 @@ constexpr int kMaxOff = 5;
 // How far (rad) frames off a hinge's consensus must bend its fit to be left
 // out of it (estimate_joint).
 constexpr double kBentHinge = 0.05;
+// The frames with a grip twist a held part's state is read from instead of
+// its own poses (estimate_joint): a second's hold at least.
+constexpr size_t kMinGripStateFrames = 10;
 
 }  // namespace
 
@@ -1340,6 +1343,32 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.axis = a.axis;
     j.origin = a.origin;
     q = q_of_hand();
+  }
+  // A turn the hand made, its hinge from the part's own poses: the grip's
+  // twist about that hinge, searched (twist_search.h) and unwrapped by half
+  // turns (twist_unwrap.h) as where the grip decided, is its position in
+  // the frames the hand held it. The part's own poses turn less than it
+  // did, or wander, where its shape barely shows the turn (seed 1's s0030
+  // right knob: 2.06 rad off at the 90th percentile of frames, 0.04 from
+  // its grip),
+  // and a lever's wander more than the hand holding it (s0036's brew
+  // lever: 0.18 rad against 0.01; bench/receptor_state_eval). Between
+  // grasps the part stays where the hand left it (fill_gaps below).
+  if (j.source == "part" && j.type == "revolute" && operated && grip && grip_points && !j.axis_from_part) {
+    std::vector<double> registered(n, kNaN);
+    const Eigen::Vector3d axis = j.axis.normalized();
+    for (size_t f = 0; f < grip->motion.size() && f < registered.size(); ++f)
+      if (grip->tracked[f]) registered[f] = twist_about(grip->motion[f], axis);
+    std::vector<double> searched = search_twists(*grip_points, grip->model, axis, j.origin, registered);
+    std::vector<bool> held(n, false);
+    for (int f : hand_frames) held[f] = true;
+    searched = unwrap_half_turns(searched, held, kRegraspFrames);
+    size_t frames = 0;
+    for (double v : searched) frames += std::isfinite(v);
+    if (frames >= kMinGripStateFrames) {
+      q = std::move(searched);
+      j.state_from_grip = true;
+    }
   }
   if (j.axis_from_part) {
     // The position as the contacts trace it about their own fit of the

@@ -114,6 +114,10 @@ struct JointEstimate {
   // holding it turned plainly too: the grip's hinge (axis, origin) is the
   // joint's, the part's twist about it its position (a lever's).
   bool hinge_from_grip = false;
+  // The part's own track gave the hinge of a turn the hand made, and the
+  // grip's twist searched about that hinge gave its position frame by
+  // frame (a knob's or a lever's own poses slip or lag behind the hand's).
+  bool state_from_grip = false;
   // The frames of the grip's one typing sample its type was read without
   // (a trimmed fit: its registration spun for those frames), left out of
   // its frame-by-frame fits too; empty where none was.
