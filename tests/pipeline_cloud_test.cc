@@ -229,6 +229,19 @@ TEST(PipelineCloud, KdTreeAgreesWithBruteForce) {
     size_t expected = 0;
     while (expected < brute.size() && brute[expected].first < 0.04) ++expected;
     EXPECT_EQ(within.size(), expected);
+    // The nearest within a distance: the nearest where it is that near,
+    // none where it is not (0.04 and 0.08 squared, about the nearest's
+    // distance among 2000 points in the cube).
+    for (double r : {0.04, 0.08}) {
+      size_t near_idx = 0;
+      double near_d2 = 0;
+      const bool found = tree.nearest_within(x, r, &near_idx, &near_d2);
+      EXPECT_EQ(found, brute[0].first < r * r) << r;
+      if (found) {
+        EXPECT_EQ(near_idx, brute[0].second);
+        EXPECT_NEAR(near_d2, brute[0].first, 1e-12);
+      }
+    }
   }
   std::vector<Eigen::Vector3d> none;
   KdTree empty(none);
@@ -239,6 +252,9 @@ TEST(PipelineCloud, KdTreeAgreesWithBruteForce) {
   empty.knn(Eigen::Vector3d::Zero(), 3, &out, nullptr);
   EXPECT_TRUE(out.empty());
   EXPECT_FALSE(tree.nearest(Eigen::Vector3d(kNaN, 0, 0), &idx, &d2));
+  EXPECT_FALSE(empty.nearest_within(Eigen::Vector3d::Zero(), 1.0, &idx, &d2));
+  EXPECT_FALSE(tree.nearest_within(Eigen::Vector3d(kNaN, 0, 0), 1.0, &idx, &d2));
+  EXPECT_FALSE(tree.nearest_within(Eigen::Vector3d::Zero(), 0.0, &idx, &d2));
 }
 
 // ---- icp.h

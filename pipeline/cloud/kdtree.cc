@@ -61,6 +61,22 @@ bool KdTree::nearest(const Eigen::Vector3d& q, size_t* index, double* dist2) con
   return true;
 }
 
+bool KdTree::nearest_within(const Eigen::Vector3d& q, double r, size_t* index, double* dist2) const {
+  if (!impl_->index || !q.allFinite() || !(r > 0) || !std::isfinite(r)) return false;
+  size_t i = 0;
+  double d2 = 0;
+  nanoflann::KNNResultSet<double, size_t, size_t> result(1);
+  result.init(&i, &d2);
+  // The one slot starts r^2 away: the tree only descends where a point can
+  // beat it, and only such a point is taken.
+  d2 = r * r;
+  impl_->index->findNeighbors(result, q.data(), nanoflann::SearchParams());
+  if (result.size() < 1) return false;
+  if (index != nullptr) *index = impl_->data.original(i);
+  if (dist2 != nullptr) *dist2 = d2;
+  return true;
+}
+
 void KdTree::knn(const Eigen::Vector3d& q, size_t k, std::vector<size_t>* indices, std::vector<double>* dist2) const {
   std::vector<size_t> idx;
   std::vector<double> d2;

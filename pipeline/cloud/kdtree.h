@@ -25,6 +25,11 @@ class KdTree {
   // Index of the nearest point and its squared distance; false when empty
   // (or q is not finite).
   bool nearest(const Eigen::Vector3d& q, size_t* index, double* dist2) const;
+  // The same, but only among the points nearer than r (squared distance
+  // below r^2): false when none is, or the tree is empty, or q is not
+  // finite. The search stops descending where no point can be that near,
+  // so a far query costs a few nodes (a truncated score's far points).
+  bool nearest_within(const Eigen::Vector3d& q, double r, size_t* index, double* dist2) const;
   // The min(k, size()) nearest, closest first (q itself included when it is
   // one of the points). Empty outputs for an empty tree or non-finite q.
   void knn(const Eigen::Vector3d& q, size_t k, std::vector<size_t>* indices, std::vector<double>* dist2) const;

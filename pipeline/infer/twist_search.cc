@@ -33,10 +33,13 @@ double score(const std::vector<Eigen::Vector3d>& points, const KdTree& tree, con
   const Eigen::Matrix3d back = Eigen::AngleAxisd(-twist, axis).toRotationMatrix();
   double sum = 0;
   for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d q = origin + back * (p - origin);
+    if (!q.allFinite()) return std::numeric_limits<double>::infinity();
+    // Only a model point within the truncation counts by its distance: the
+    // search for one stops where none can be (most points, at most angles).
     size_t index = 0;
     double d2 = 0;
-    if (!tree.nearest(origin + back * (p - origin), &index, &d2)) return std::numeric_limits<double>::infinity();
-    sum += std::min(d2, kTruncation * kTruncation);
+    sum += tree.nearest_within(q, kTruncation, &index, &d2) ? d2 : kTruncation * kTruncation;
   }
   return sum / static_cast<double>(points.size());
 }
@@ -50,6 +53,7 @@ std::vector<double> search_twists(const std::vector<Cloud>& clouds, const Cloud&
   if (model.size() < kMinPoints || !axis.allFinite() || axis.norm() == 0) return out;
   const Eigen::Vector3d a = axis.normalized();
   const KdTree tree(model.points);
+  if (tree.size() == 0) return out;  // no finite model point
   std::vector<Eigen::Vector3d> points;
   for (size_t f = 0; f < clouds.size(); ++f) {
     const Cloud& c = clouds[f];
