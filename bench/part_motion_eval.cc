@@ -33,7 +33,8 @@
 // median offset) the grip's twist about the TRUE hinge lies from the truth,
 // as efc infer's twist search and half-turn unwrapping give it
 // (twist_search.h, twist_unwrap.h) and as the registration alone gives it:
-// the receptor's state, apart from any error in the hinge.
+// the receptor's state, apart from any error in the hinge; and the same
+// error of the state estimate_joint gave about its own hinge.
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -156,7 +157,8 @@ double twist_error_p90(const std::vector<double>& twist, const std::vector<std::
 }
 
 // --twists: the grip's twist about the true hinge (world frame), searched
-// and unwrapped as efc infer does, and the registration's alone.
+// and unwrapped as efc infer does, the registration's alone, and the state
+// estimate_joint gave (about its own hinge, in the frames it measured).
 void print_twist_errors(const std::vector<efc::pipeline::Cloud>& clouds, const std::vector<Eigen::Vector3d>& contacts,
                         const efc::pipeline::PartTrack& grip, const Eigen::Vector3d& origin,
                         const Eigen::Vector3d& axis, const std::vector<std::map<std::string, double>>& q_rows,

@@ -1350,9 +1350,8 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // the frames the hand held it. The part's own poses turn less than it
   // did, or wander, where its shape barely shows the turn (seed 1's s0030
   // right knob: 2.06 rad off at the 90th percentile of frames, 0.04 from
-  // its grip),
-  // and a lever's wander more than the hand holding it (s0036's brew
-  // lever: 0.18 rad against 0.01; bench/receptor_state_eval). Between
+  // its grip), and a lever's wander more than the hand holding it (s0036's
+  // brew lever: 0.18 rad against 0.01; bench/receptor_state_eval). Between
   // grasps the part stays where the hand left it (fill_gaps below).
   if (j.source == "part" && j.type == "revolute" && operated && grip && grip_points && !j.axis_from_part) {
     std::vector<double> registered(n, kNaN);
