@@ -60,8 +60,6 @@
 #include "pipeline/infer/joint_names.h"
 #include "pipeline/infer/observations.h"
 #include "pipeline/infer/part_tracking.h"
-#include "pipeline/infer/twist_search.h"
-#include "pipeline/infer/twist_unwrap.h"
 #include "bench/truth_sequences.h"
 #include "sequence/sequence.h"
 
@@ -168,13 +166,9 @@ void print_twist_errors(const std::vector<efc::pipeline::Cloud>& clouds, const s
   std::vector<bool> held(n, false);
   for (size_t f = 0; f < n && f < grip.motion.size(); ++f) {
     held[f] = f < contacts.size() && !std::isnan(contacts[f].x());
-    if (!grip.tracked[f]) continue;
-    Eigen::Quaterniond r(grip.motion[f].linear());
-    if (r.w() < 0) r.coeffs() = -r.coeffs();
-    registered[f] = 2 * std::atan2(r.vec().dot(axis), r.w());
+    if (grip.tracked[f]) registered[f] = efc::pipeline::twist_about(grip.motion[f], axis);
   }
-  std::vector<double> searched = efc::pipeline::search_twists(clouds, grip.model, axis, origin, registered);
-  searched = efc::pipeline::unwrap_half_turns(searched, held, efc::pipeline::kRegraspFrames);
+  const std::vector<double> searched = efc::pipeline::grip_twists_about(grip, clouds, axis, origin, held);
   size_t frames_searched = 0, frames_registered = 0;
   const double e_searched = twist_error_p90(searched, q_rows, name, &frames_searched);
   const double e_registered = twist_error_p90(registered, q_rows, name, &frames_registered);
@@ -326,10 +320,8 @@ int main(int argc, char** argv) {
         char buf[96] = "";
         if (grip && f < static_cast<int>(grip->tracked.size()) && grip->tracked[f]) {
           const Eigen::Isometry3d& g = grip->motion[f];
-          Eigen::Quaterniond r(g.linear());
-          if (r.w() < 0) r.coeffs() = -r.coeffs();
           std::snprintf(buf, sizeof buf, "  grip twist %6.1f deg slide %6.1f mm",
-                        2 * std::atan2(r.vec().dot(true_axis), r.w()) * kDeg,
+                        efc::pipeline::twist_about(g, true_axis) * kDeg,
                         1000 * (g * grip_centre - grip_centre).dot(true_axis));
         }
         return std::string(buf);

@@ -1,6 +1,11 @@
 #include "pipeline/infer/grip_track.h"
 
 #include <cmath>
+#include <limits>
+
+#include "pipeline/infer/part_tracking.h"
+#include "pipeline/infer/twist_search.h"
+#include "pipeline/infer/twist_unwrap.h"
 
 namespace efc::pipeline {
 
@@ -28,6 +33,21 @@ std::vector<Cloud> grip_clouds(const Observations& obs, const std::vector<Eigen:
     }
   }
   return grip;
+}
+
+double twist_about(const Eigen::Isometry3d& m, const Eigen::Vector3d& axis) {
+  Eigen::Quaterniond r(m.linear());
+  if (r.w() < 0) r.coeffs() = -r.coeffs();
+  return 2 * std::atan2(r.vec().dot(axis), r.w());
+}
+
+std::vector<double> grip_twists_about(const PartTrack& grip, const std::vector<Cloud>& points,
+                                      const Eigen::Vector3d& axis, const Eigen::Vector3d& origin,
+                                      const std::vector<bool>& held) {
+  std::vector<double> registered(held.size(), std::numeric_limits<double>::quiet_NaN());
+  for (size_t f = 0; f < grip.motion.size() && f < registered.size(); ++f)
+    if (grip.tracked[f]) registered[f] = twist_about(grip.motion[f], axis);
+  return unwrap_half_turns(search_twists(points, grip.model, axis, origin, registered), held, kRegraspFrames);
 }
 
 }  // namespace efc::pipeline

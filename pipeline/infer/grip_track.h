@@ -38,4 +38,18 @@ std::vector<Cloud> grip_clouds(const Observations& obs, const std::vector<Eigen:
 // where it was). efc infer and bench/part_motion_eval share it.
 TrackOptions grip_tracking_options();
 
+// The turn of motion `m` about `axis` (unit): the angle of its twist in the
+// swing-twist decomposition, in (-pi, pi].
+double twist_about(const Eigen::Isometry3d& m, const Eigen::Vector3d& axis);
+
+// A held part's position about a hinge (axis unit, origin; the frame of
+// `grip` and `points`) as its grip gives it, frame by frame: the grip's
+// registered twist about the hinge, searched through a whole turn where the
+// registration fell short (twist_search.h), then unwrapped by half turns
+// over the frames `held` (twist_unwrap.h). NaN where the grip has none.
+// estimate_joint and bench/part_motion_eval --twists share it.
+std::vector<double> grip_twists_about(const PartTrack& grip, const std::vector<Cloud>& points,
+                                      const Eigen::Vector3d& axis, const Eigen::Vector3d& origin,
+                                      const std::vector<bool>& held);
+
 }  // namespace efc::pipeline

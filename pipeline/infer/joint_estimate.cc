@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "pipeline/cloud/icp.h"
+#include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/part_tracking.h"
 #include "pipeline/infer/twist_search.h"
 #include "pipeline/infer/twist_unwrap.h"
@@ -176,14 +177,6 @@ double end_value(const std::vector<double>& q, bool from_back) {
   for (size_t k = 1; k + 1 < values.size(); ++k) steps.push_back(std::abs(values[k + 1] - values[k]));
   const double middle = median_of(values);
   return std::abs(values.front() - middle) > kSpikeSteps * median_of(steps) ? middle : values.front();
-}
-
-// The turn of motion `m` about `axis` (world frame, unit): the angle of its
-// twist in the swing-twist decomposition, in (-pi, pi].
-double twist_about(const Eigen::Isometry3d& m, const Eigen::Vector3d& axis) {
-  Eigen::Quaterniond r(m.linear());
-  if (r.w() < 0) r.coeffs() = -r.coeffs();
-  return 2 * std::atan2(r.vec().dot(axis), r.w());
 }
 
 // The grip's twist about `axis` (world frame, unit) that most of its
@@ -1135,6 +1128,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     for (int f : hand_frames) h[f] = hand_points[f];
     return smoothed(q_from_hand(j, h), 4);
   };
+  // The frames the hand held the part: its twist's grasps (twist_unwrap.h).
+  auto held_frames = [&]() {
+    std::vector<bool> held(n, false);
+    for (int f : hand_frames) held[f] = true;
+    return held;
+  };
   // The part turns about an axis through itself that its shape barely
   // shows: its symmetry axis, a knob's and a button's joint axis alike,
   // which its slipping registration finds better than the grip's fingers
@@ -1176,11 +1175,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     if (type != "prismatic" && grip_points) q = search_twists(*grip_points, grip->model, j.axis, j.origin, q);
     // The hand's registration is ambiguous by half a turn about the knob
     // (twist_unwrap.h): its twist is unwrapped along the recording.
-    if (type != "prismatic") {
-      std::vector<bool> held(n, false);
-      for (int f : hand_frames) held[f] = true;
-      q = unwrap_half_turns(q, held, kRegraspFrames);
-    }
+    if (type != "prismatic") q = unwrap_half_turns(q, held_frames(), kRegraspFrames);
   } else if (grip_decides || geometry_from_part) {
     // The chosen model fitted frame by frame on the track that decided. A
     // swing past a slip: on the poses the typing saw, the twist left out and
@@ -1221,21 +1216,14 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       for (int f : frames[k]) q[f] = a.q[k];
     // A grip's turn, as the slip's above, is searched about the hinge
     // where the registration fell short of it (twist_search.h), from the
-    // registration's twist about the hinge, frame by frame.
-    if (grip_decides && type == "revolute" && grip_points) {
-      std::vector<double> registered(n, kNaN);
-      for (size_t f = 0; f < grip->motion.size() && f < registered.size(); ++f)
-        if (grip->tracked[f]) registered[f] = twist_about(grip->motion[f], j.axis.normalized());
-      q = search_twists(*grip_points, grip->model, j.axis, j.origin, registered);
-    }
-    // And it is right only modulo a half turn about a knob
-    // (twist_unwrap.h): a knob turned 3.8 rad read as 0.6 (seed 1's
-    // s0034). A lever's grip, far from its hinge, never lands half a turn
-    // off, and its smooth course needs no half turns.
+    // registration's twist about the hinge, frame by frame. And it is right
+    // only modulo a half turn about a knob (twist_unwrap.h): a knob turned
+    // 3.8 rad read as 0.6 (seed 1's s0034). A lever's grip, far from its
+    // hinge, never lands half a turn off, and its smooth course needs no
+    // half turns.
     if (grip_decides && type == "revolute") {
-      std::vector<bool> held(n, false);
-      for (int f : hand_frames) held[f] = true;
-      q = unwrap_half_turns(q, held, kRegraspFrames);
+      if (grip_points) q = grip_twists_about(*grip, *grip_points, j.axis.normalized(), j.origin, held_frames());
+      else q = unwrap_half_turns(q, held_frames(), kRegraspFrames);
     }
     // A held lever's or handle's own poses fit a hinge 5 to 40 degrees off
     // (a bar is nearly round about its length, which its registration can
@@ -1354,14 +1342,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // brew lever: 0.18 rad against 0.01; bench/receptor_state_eval). Between
   // grasps the part stays where the hand left it (fill_gaps below).
   if (j.source == "part" && j.type == "revolute" && operated && grip && grip_points && !j.axis_from_part) {
-    std::vector<double> registered(n, kNaN);
-    const Eigen::Vector3d axis = j.axis.normalized();
-    for (size_t f = 0; f < grip->motion.size() && f < registered.size(); ++f)
-      if (grip->tracked[f]) registered[f] = twist_about(grip->motion[f], axis);
-    std::vector<double> searched = search_twists(*grip_points, grip->model, axis, j.origin, registered);
-    std::vector<bool> held(n, false);
-    for (int f : hand_frames) held[f] = true;
-    searched = unwrap_half_turns(searched, held, kRegraspFrames);
+    std::vector<double> searched = grip_twists_about(*grip, *grip_points, j.axis.normalized(), j.origin, held_frames());
     size_t frames = 0;
     for (double v : searched) frames += std::isfinite(v);
     if (frames >= kMinGripStateFrames) {
