@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "pipeline/cloud/filters.h"
 #include "pipeline/cloud/icp.h"
 #include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/part_tracking.h"
@@ -418,6 +419,17 @@ double visibility(const Cloud& surface, const std::string& type, const Eigen::Ve
   if (!(generic > 0)) return 0;
   const double mine = type == "prismatic" ? share(true, a, centre) : share(false, a, origin);
   return mine / generic;
+}
+
+Cloud with_surface_normals(const Cloud& model) {
+  Cloud out = model;
+  estimate_normals(&out, kSurfaceNormalNeighbours, nullptr);
+  return out;
+}
+
+double shape_visibility(const Cloud& model, const std::string& type, const Eigen::Vector3d& axis,
+                        const Eigen::Vector3d& origin) {
+  return std::min(visibility(model, type, axis, origin), visibility(with_surface_normals(model), type, axis, origin));
 }
 
 bool turns_about_itself(const Cloud& model, const Eigen::Vector3d& axis, const Eigen::Vector3d& origin) {
@@ -1309,7 +1321,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       for (size_t k = 0; k < frames.size() && k < a.slide.size(); ++k)
         for (int f : frames[k]) q[f] = sign * a.slide[k];
     } else if (!grip_decides && !j.swing_past_slip && type == "revolute" && !operated && !j.has_hand_track &&
-               visibility(track.model, "revolute", a.axis, a.origin) < kSlipVisibility) {
+               shape_visibility(track.model, "revolute", a.axis, a.origin) < kSlipVisibility) {
       // Nobody operates it, and the turn is one its shape barely shows, one
       // its registration can slip into (a round LED, a burner, a grille's
       // disc, a lamp's shade): the turn is the slip and the part stays where
