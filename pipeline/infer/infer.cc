@@ -69,6 +69,7 @@ ojson joint_report(const JointEstimate& j) {
   if (j.type_from_name) r["type_from_name"] = true;
   if (j.slide_over_turn) r["slide_over_turn"] = true;
   if (j.turn_taken_for_slip) r["turn_taken_for_slip"] = true;
+  if (j.slide_taken_for_slip) r["slide_taken_for_slip"] = true;
   if (j.swing_past_slip) r["swing_past_slip"] = true;
   if (j.press_past_slip) r["press_past_slip"] = true;
   if (j.slide_past_spin) r["slide_past_spin"] = true;
@@ -419,7 +420,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
       po.q_hand = a.joint.q_hand;
       po.q_seen = a.joint.q_seen;
       for (int f = 0; f < n && f < static_cast<int>(po.q.size()); ++f) po.motion[f] = joint_motion(a.joint, po.q[f]);
-    } else if (a.joint.turn_taken_for_slip && tracks[p]) {
+    } else if (a.joint.registration_slipped() && tracks[p]) {
       // Fixed, but its registration places it in each frame better than the
       // object's alone does (as in its fusion): its pixels are found there.
       for (int f = 0; f < n && f < static_cast<int>(tracks[p]->motion.size()); ++f)

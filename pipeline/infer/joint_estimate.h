@@ -71,6 +71,15 @@ struct JointEstimate {
   // and that shows no slide either: typed fixed, the turn taken for its
   // registration slipping round a near-symmetry.
   bool turn_taken_for_slip = false;
+  // The same for a slide: a part no hand held whose track slides along a
+  // direction its shape barely shows, and along the one it shows best
+  // stays put; typed fixed, the slide taken for its registration slipping
+  // across a flat face.
+  bool slide_taken_for_slip = false;
+  // Fixed, but the part's registration slipped round or along a shape
+  // that hides it: the registration still places the part in each frame
+  // (its fusion, the templates' pixels) better than the object's alone.
+  bool registration_slipped() const { return turn_taken_for_slip || slide_taken_for_slip; }
   // A near-symmetric part whose track, less its twist about its symmetry
   // axis, swings about a hinge beside it that its shape plainly shows: the
   // swing decides (a door's plate slipping round its normal, a round

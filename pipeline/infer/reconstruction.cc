@@ -11,11 +11,12 @@ PartReconstruction reconstruct_part(const Observations& obs, int part, const std
                                     const PartTrack* track, const JointEstimate* joint) {
   const auto start = std::chrono::steady_clock::now();
   PartReconstruction out;
-  // A part typed fixed because its turn is its registration slipping round a
-  // near-symmetry still has that registration: its frames are fused along
-  // it, as a moving part's (the slip turns the shape into itself, and the
-  // frames the registration refused, a swapped or spilt mask, stay out).
-  const bool moves = track && joint && (joint->type != "fixed" || joint->turn_taken_for_slip);
+  // A part typed fixed because its turn or slide is its registration
+  // slipping round a near-symmetry or across a flat face still has that
+  // registration: its frames are fused along it, as a moving part's (the
+  // slip turns the shape into itself, and the frames the registration
+  // refused, a swapped or spilt mask, stay out).
+  const bool moves = track && joint && (joint->type != "fixed" || joint->registration_slipped());
   FusionOptions fo;
   fo.voxel = 0.003;
   fo.min_observations = 2;
