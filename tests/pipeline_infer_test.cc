@@ -276,17 +276,22 @@ TEST(PipelineInfer, ARoundShadeSeenFromOneSideSlipsRoundItselfToo) {
   EXPECT_NE(knob.type, "fixed");
 }
 
+// `c` with each normal tilted by the depth's noise as a fused model's are
+// (about 35 degrees, from a pixel's neighbours in its depth image).
+Cloud with_noisy_normals(Cloud c, std::mt19937& rng) {
+  std::normal_distribution<double> g(0, 0.6);
+  for (Vector3d& n : c.normals) n = (n + Vector3d(g(rng), g(rng), g(rng))).normalized();
+  return c;
+}
+
 // A pot seen from the front: the near half of a cylinder (radius 9 cm,
-// height 12 cm) and its top, points 5 mm apart, each normal tilted by the
-// depth's noise as a fused model's are (about 35 degrees, from a pixel's
-// neighbours in its depth image).
+// height 12 cm) and its top, points 5 mm apart, its normals noisy
+// (with_noisy_normals).
 Cloud pot_with_noisy_normals(unsigned seed) {
   Cloud c;
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> g(0, 0.6);
   auto add = [&](const Vector3d& p, const Vector3d& n) {
     c.points.push_back(p);
-    c.normals.push_back((n + Vector3d(g(rng), g(rng), g(rng))).normalized());
+    c.normals.push_back(n);
   };
   const double r = 0.09, h = 0.12, step = 0.005;
   for (double a = kPi; a < 2 * kPi; a += step / r)
@@ -294,7 +299,8 @@ Cloud pot_with_noisy_normals(unsigned seed) {
   for (double x = -r; x <= r; x += step)
     for (double y = -r; y <= r; y += step)
       if (x * x + y * y <= r * r) add(Vector3d(x, y, h), Vector3d::UnitZ());
-  return c;
+  std::mt19937 rng(seed);
+  return with_noisy_normals(c, rng);
 }
 
 TEST(PipelineInfer, APotsSpinIsReadOnItsSurfaceNotOnItsNoisyNormals) {
@@ -322,9 +328,7 @@ TEST(PipelineInfer, APotsSpinIsReadOnItsSurfaceNotOnItsNoisyNormals) {
   const JointEstimate spun = estimate_joint(t, no_hand(frames), false);
   EXPECT_EQ(spun.type, "fixed");
   EXPECT_TRUE(spun.turn_taken_for_slip);
-  Cloud door = panel();
-  std::normal_distribution<double> tilt(0, 0.6);
-  for (Vector3d& n : door.normals) n = (n + Vector3d(tilt(rng), tilt(rng), tilt(rng))).normalized();
+  const Cloud door = with_noisy_normals(panel(), rng);
   PartTrack swung = turning(door, axis, Vector3d::Zero(), 1.2, frames, 0.001, 53);
   const JointEstimate driven = estimate_joint(swung, no_hand(frames), false);
   EXPECT_EQ(driven.type, "revolute");

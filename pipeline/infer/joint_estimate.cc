@@ -1295,6 +1295,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
                           j.from_hand.range_hi - j.from_hand.range_lo > kMaxPress;
     Eigen::Vector3d shown;
     if (barely_shown_slide && !j.hand_slides_along && best_shown_slide(track.model, &shown)) {
+      const Eigen::Matrix3d along_shown = shown * shown.transpose();
       // Nobody presses it (no hand on it either): the slide its shape
       // barely shows is the registration's slip, and the part moved only
       // if the direction its shape shows best says so on the typing's runs
@@ -1304,14 +1305,14 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       // within 0.8 mm); a slide its shape shows (a lid pushed out along its
       // normal) still types it.
       if (!operated && !j.has_hand_track &&
-          estimate_articulation(with_slides_only_along(part, shown * shown.transpose())).type == "fixed") {
+          estimate_articulation(with_slides_only_along(part, along_shown)).type == "fixed") {
         j.type = "fixed";
         j.slide_taken_for_slip = true;
         j.confidence = 0.5;  // by the rule, not by the likelihoods (which favour the slide)
         return j;
       }
       const Articulation b =
-          estimate_articulation_as(with_slides_only_along(samples, shown * shown.transpose()), "prismatic");
+          estimate_articulation_as(with_slides_only_along(samples, along_shown), "prismatic");
       const double b_shown = visibility(track.model, "prismatic", b.axis, b.origin);
       if (b.prismatic.valid && b_shown >= kSlipVisibility && b_shown > slide_shown) {
         j.axis = b.axis;
