@@ -1300,10 +1300,10 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       // barely shows is the registration's slip, and the part moved only
       // if the direction its shape shows best says so on the typing's runs
       // of frames, typed again there alone. A flat panel's or a vent's
-      // poses wander centimetres in its face's plane and a fraction of a
-      // millimetre along its normal (seed 1's s0014 and s0016 panels:
-      // within 0.8 mm); a slide its shape shows (a lid pushed out along its
-      // normal) still types it.
+      // poses wander centimetres in its face's plane and a millimetre or
+      // so along its normal (seed 1's s0014 and s0016 panels: 95 % of the
+      // frames within 0.7 and 1.0 mm of rest); a slide its shape shows (a
+      // lid pushed out along its normal) still types it.
       if (!operated && !j.has_hand_track &&
           estimate_articulation(with_slides_only_along(part, along_shown)).type == "fixed") {
         j.type = "fixed";
