@@ -82,7 +82,7 @@ TEST(InferCli, SyntheticDrawerToSpecThatCompilesAndPlays) {
     EXPECT_GE(s["seconds"].get<double>(), 0.0) << s;
   }
   EXPECT_EQ(stage_names, (std::vector<std::string>{"observations", "ego_motion", "part_motion", "grip_motion",
-                                                   "articulation", "reconstruction", "templates"}));
+                                                   "articulation", "reconstruction", "axis_prior", "templates"}));
   // The drawer's position per frame (parts[].joint.q) follows the truth's
   // (truth/joints.csv, one row per frame), both from where it was first seen.
   {

@@ -8,6 +8,8 @@
 #include <memory>
 #include <thread>
 
+#include "pipeline/infer/axis_prior.h"
+#include "pipeline/infer/body_frame.h"
 #include "pipeline/infer/ego_motion.h"
 #include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/hand_contacts.h"
@@ -371,6 +373,23 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   recon[root].squared = square_the_body(&recon[root]);
   stages.push_back(stage("reconstruction", since(t0)));
   if (progress) progress("infer: parts reconstructed");
+
+  // 5a. The body's axes as a prior on the joints' axes (axis_prior.h). After
+  // the reconstruction, which follows each part's registered motion: the
+  // prior moves the joints' axes, not the parts' points.
+  t0 = Clock::now();
+  const BodyFrame frame = body_frame(recon[root].fused);
+  std::vector<AxisPrior> axis_priors(obs.parts.size());
+  for (int p : moving_parts)
+    if (tracks[p]) axis_priors[p] = apply_axis_prior(frame, &joints[p], &tracks[p]->model);
+  {
+    ojson s = stage("axis_prior", since(t0));
+    s["body_axes_found"] = frame.found;
+    s["yaw_rad"] = frame.yaw;
+    s["box_share"] = frame.box_share;
+    s["upright_share"] = frame.upright_share;
+    stages.push_back(s);
+  }
   std::vector<AssembledPart> assembled;
   std::vector<int> part_of_assembled;
   for (int p = 0; p < static_cast<int>(obs.parts.size()); ++p) {
@@ -471,6 +490,12 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
 
                    {"seconds", t.seconds}};
       jp["joint"] = joint_report(joints[p]);
+      if (joints[p].type != "fixed") {
+        const AxisPrior& prior = axis_priors[p];
+        jp["joint"]["axis_prior"] = {{"estimated_axis", vec(prior.estimated)}, {"angle_to_body_axis_rad", prior.angle}};
+        if (!prior.axis.empty()) jp["joint"]["axis_prior"]["taken_onto"] = prior.axis;
+        if (prior.by_face) jp["joint"]["axis_prior"]["by_face"] = true;
+      }
     } else {
       jp["joint"] = {{"type", assembled[k].root ? "root" : "fixed"}, {"source", "static"}};
     }

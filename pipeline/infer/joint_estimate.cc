@@ -519,11 +519,8 @@ bool hand_has_lever(const JointEstimate& j, const std::vector<Eigen::Vector3d>& 
   return radius[radius.size() / 2] >= kHandLeverNoises * kHandPointNoise;
 }
 
-// The slide a part's shape shows best: along the principal direction of
-// its normals (the largest eigenvector of sum n n^T: a button's face
-// normal; object frame, the model's reference configuration). False where
-// even that slide shows less than kSlipVisibility (a round rod along its
-// length).
+}  // namespace
+
 bool best_shown_slide(const Cloud& model, Eigen::Vector3d* axis) {
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (const Eigen::Vector3d& n : model.normals) scatter += n * n.transpose();
@@ -533,6 +530,8 @@ bool best_shown_slide(const Cloud& model, Eigen::Vector3d* axis) {
   *axis = a;
   return true;
 }
+
+namespace {
 
 // Whether a part faces along its symmetry axis `axis` (unit): the
 // direction its normals show best (best_shown_slide(): a button's face
@@ -598,12 +597,6 @@ bool held_press(const std::vector<double>& along) {
   }
   return false;
 }
-
-// A receptor's slide across a shape that shows it less than a generic
-// motion (kPlainTurnVisibility) is taken for a press under a drift only
-// up to this far: a press (kMaxPress) and a registration's wander with it
-// (the suites' buttons: 12 to 35 mm); a slider's knob goes further.
-constexpr double kMaxDriftedPress = 0.04;
 
 // How much better (BIC) a slide along a spinning part's axis must explain
 // its poses less the spin than staying put does, for a part nobody

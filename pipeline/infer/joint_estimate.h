@@ -156,6 +156,21 @@ Cloud with_surface_normals(const Cloud& model);
 double shape_visibility(const Cloud& model, const std::string& type, const Eigen::Vector3d& axis,
                         const Eigen::Vector3d& origin);
 
+// The slide a part's shape shows best: along the principal direction of
+// its normals (the largest eigenvector of sum n n^T: a button's face
+// normal; object frame, the model's reference configuration). False where
+// even that slide shows less than kSlipVisibility (a round rod along its
+// length).
+bool best_shown_slide(const Cloud& model, Eigen::Vector3d* axis);
+
+// A receptor's slide across a shape that shows it less than a generic
+// motion (kPlainTurnVisibility) is taken for a press under a drift only
+// up to this far: a press (kMaxPress) and a registration's wander with it
+// (the suites' buttons: 12 to 35 mm); a slider's knob goes further. The
+// body's axes read a slide no longer than this as a press too
+// (axis_prior.h).
+constexpr double kMaxDriftedPress = 0.04;
+
 // How visible a joint's motion is on a part's surface: the share of the
 // motion's displacement that lies along the surface normals, relative to
 // that of generic motions (turns about two axes across it through the same

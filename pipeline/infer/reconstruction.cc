@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "pipeline/cloud/fusion.h"
+#include "pipeline/infer/body_frame.h"
 
 namespace efc::pipeline {
 
@@ -110,35 +111,12 @@ bool stand_on_its_foot(const Observations& obs, int part, const std::vector<Eige
 bool square_the_body(PartReconstruction* recon) {
   const Cloud& c = recon->fused;
   if (!c.has_normals() || c.size() < 50 || recon->mesh.vertices.size() < 4) return false;
-  // The upright faces' yaw: each normal's azimuth times four (a box's four
-  // sides then point the same way), averaged on the circle.
-  double sx = 0, sy = 0;
-  for (size_t i = 0; i < c.size(); ++i) {
-    const Eigen::Vector3d& n = c.normals[i];
-    if (!n.allFinite() || std::abs(n.z()) > 0.5) continue;
-    const double a = 4 * std::atan2(n.y(), n.x());
-    const double w = std::hypot(n.x(), n.y());
-    sx += w * std::cos(a), sy += w * std::sin(a);
-  }
-  if (!(std::hypot(sx, sy) > 0)) return false;
-  const double yaw = std::atan2(sy, sx) / 4;
-  const Eigen::Vector3d u(std::cos(yaw), std::sin(yaw), 0), v(-std::sin(yaw), std::cos(yaw), 0), up = Eigen::Vector3d::UnitZ();
-  const double cos_tol = std::cos(kBoxNormalDegrees * 3.14159265358979323846 / 180);
-  size_t facing = 0, counted = 0, upright = 0, upright_facing = 0;
-  for (size_t i = 0; i < c.size(); ++i) {
-    const Eigen::Vector3d& n = c.normals[i];
-    if (!n.allFinite() || !c.points[i].allFinite()) continue;
-    ++counted;
-    const bool side = std::abs(n.dot(u)) >= cos_tol || std::abs(n.dot(v)) >= cos_tol;
-    facing += side || std::abs(n.dot(up)) >= cos_tol;
-    // The upright faces alone too: a disc's top and bottom would carry a
-    // round base past the share.
-    if (std::abs(n.z()) < 0.5) ++upright, upright_facing += side;
-  }
-  recon->box_share = counted ? static_cast<double>(facing) / counted : 0.0;
-  if (recon->box_share < kBoxShare || upright == 0 ||
-      static_cast<double>(upright_facing) / upright < kBoxShare)
-    return false;
+  // The box's axes (body_frame.h): the upright faces' yaw, and whether most
+  // of the surface faces the box's six faces.
+  const BodyFrame frame = body_frame(c);
+  recon->box_share = frame.box_share;
+  if (!frame.found) return false;
+  const Eigen::Vector3d &u = frame.u, &v = frame.v, &up = frame.up;
   // The box: the standing hull's extent along u, v and up.
   Eigen::AlignedBox3d box;
   for (const Eigen::Vector3d& p : recon->mesh.vertices) box.extend(Eigen::Vector3d(p.dot(u), p.dot(v), p.z()));
@@ -147,8 +125,9 @@ bool square_the_body(PartReconstruction* recon) {
   // lamp's base) leave much of it inside.
   const Eigen::Vector3d size = box.sizes();
   const double near = std::max(kBoxSurfaceNear, kBoxSurfaceShareOfSize * size.minCoeff());
-  size_t on_surface = 0;
+  size_t on_surface = 0, counted = 0;  // counted: the points with a normal, as body_frame counts them
   for (size_t i = 0; i < c.size(); ++i) {
+    counted += c.points[i].allFinite() && c.normals[i].allFinite();
     if (!c.points[i].allFinite()) continue;
     const Eigen::Vector3d q(c.points[i].dot(u), c.points[i].dot(v), c.points[i].z());
     const double inside = (q - box.min()).cwiseMin(box.max() - q).minCoeff();

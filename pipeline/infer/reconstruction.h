@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "pipeline/cloud/mesh.h"
+#include "pipeline/infer/body_frame.h"
 #include "pipeline/infer/joint_estimate.h"
 #include "pipeline/infer/part_tracking.h"
 
@@ -82,8 +83,6 @@ bool stand_on_its_foot(const Observations& obs, int part, const std::vector<Eige
 // better than the box's corners; measured on the suite, 5 to 20 % worse
 // Chamfer squared). `recon`'s fused points and bounds are kept; false
 // (recon unchanged) where the body is not such a box.
-constexpr double kBoxShare = 0.7;
-constexpr double kBoxNormalDegrees = 20;
 constexpr double kBoxSurfaceNear = 0.015;       // m
 constexpr double kBoxSurfaceShareOfSize = 0.05;
 constexpr double kBoxSurfaceShare = 0.7;
