@@ -1243,6 +1243,39 @@ TEST(PipelineInfer, AKnobWhoseSlipTurnsItAboutALineBesideItIsReadThroughItsGrip)
   for (int f : {40, 75, 110}) EXPECT_NEAR(std::abs(knob.q[f] - knob.q[10]), angle(f), 0.15) << "frame " << f;
 }
 
+TEST(PipelineInfer, APlainKnobsSlipTooFaintToShowStillGivesItsAxisToItsGrip) {
+  // A plain round knob (no ridge: its shape shows no turn about its axis
+  // at all, visibility under kMinVisibility) whose registration slips
+  // round that axis, held in frames 20 to 130 by fingers twisting it 1.5
+  // rad and back while rolling on it: their twist is about an axis 0.5 rad
+  // off the knob's (seed 1's s0018 knob: the grip's hinge 1.57 rad off, the
+  // part's slip 0.14). The slip's axis is the knob's; the grip gives its
+  // position.
+  const int frames = 150;
+  std::mt19937 rng(91);
+  std::normal_distribution<double> g(0, 0.0005);
+  const Vector3d rolling(std::sin(0.5), 0, std::cos(0.5));
+  auto angle = [](int f) { return f < 20 || f >= 130 ? 0.0 : 1.5 * std::sin(kPi * (f - 20) / 110.0); };
+  const PartTrack twist = grip(frames, 20, 130, [&](int f) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(angle(f), rolling).toRotationMatrix();
+    T.translation() += Vector3d(g(rng), g(rng), g(rng));
+    return T;
+  });
+  std::vector<Vector3d> hand = no_hand(frames);
+  for (int f = 20; f < 130; ++f) hand[f] = Vector3d(0, 0, 0.012);
+  const PartTrack part = slipping_round_part(plain_button(), false, false, frames, 93, 0.3);
+  const JointEstimate knob = estimate_joint(part, hand, true, &twist, "revolute");
+  ASSERT_EQ(knob.from_part.type, "revolute");
+  EXPECT_LT(knob.part_visibility, kMinVisibility);
+  EXPECT_GT(std::acos(std::min(1.0, std::abs(knob.from_grip.axis.normalized().dot(Vector3d::UnitZ())))), 0.3);
+  EXPECT_EQ(knob.source, "grip");
+  EXPECT_EQ(knob.type, "revolute");
+  EXPECT_LT(std::acos(std::min(1.0, std::abs(knob.axis.dot(Vector3d::UnitZ())))), 0.1);
+  EXPECT_LT(Eigen::Vector2d(knob.origin.x(), knob.origin.y()).norm(), 0.01);
+  EXPECT_GT(knob.range_hi - knob.range_lo, 1.0);
+}
+
 // A hidden knob held from frame 20 to 129 and turned 3 rad and back at
 // 0.6 rad a frame, twice, from frame `start` (up in 5 frames, held 20, back
 // in 5, at rest 25); its grip's registration settles a tenth of the way

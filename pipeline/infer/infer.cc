@@ -102,6 +102,12 @@ ojson joint_report(const JointEstimate& j) {
     f["type"] = a.type;
     f["samples"] = a.samples;
     f["residual_m"] = a.residual;
+    // The track's own geometry (object frame), where it moved: what the
+    // joint's axis would be had this track decided.
+    if (a.type != "fixed") {
+      f["axis"] = vec(a.axis);
+      if (a.type == "revolute") f["origin"] = vec(a.origin);
+    }
     f["p"] = {{"fixed", a.p_fixed}, {"prismatic", a.p_prismatic}, {"revolute", a.p_revolute}};
     // The hinge that also slides along its axis (Articulation::slide_bic),
     // beside the plain hinge's score: where it wins by much on a part

@@ -1006,7 +1006,17 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
                            j.from_grip.type == "revolute" && j.part_visibility < kSlipVisibility && part_reliable &&
                            near_symmetry_axis(track.model, &spin_of_shape) &&
                            std::abs(spin_of_shape.dot(j.from_part.axis.normalized())) >= kFacingCos;
-  const bool part_may_slip = !j.swing_past_slip && !along_spin && (part_shows_a_slip || slip_beside);
+  // And a turn too faint to show at all (visibility under kMinVisibility)
+  // about the part's own symmetry axis, where the grip turns: a plain
+  // round knob's registration slips round that axis, its knob's hinge, and
+  // the grip's own hinge, fitted on fingers that roll as they turn, comes
+  // out tens of degrees off (seed 1's s0018 knob: the grip's axis 1.57 rad
+  // off, the part's 0.14).
+  const bool spin_unseen = operated && j.has_part_track && part_reliable && j.from_part.type == "revolute" &&
+                           j.part_visibility < kMinVisibility && j.has_grip_track && j.from_grip.type == "revolute" &&
+                           near_symmetry_axis(track.model, &spin_of_shape) &&
+                           std::abs(spin_of_shape.dot(j.from_part.axis.normalized())) >= kFacingCos;
+  const bool part_may_slip = !j.swing_past_slip && !along_spin && (part_shows_a_slip || slip_beside || spin_unseen);
   const bool grip_decides = !j.swing_past_slip && !along_spin && j.has_grip_track && j.from_grip.type != "fixed" &&
                             j.grip_visibility >= kMinVisibility &&
                             (!part_decides || part_may_slip || (operated && turn_of_a_button && grip_slides));
