@@ -161,6 +161,12 @@ TEST(PipelineInferAxisPrior, OnARoundBodyOnlyUpIsAPrior) {
   const Vector3d read = slide.axis;
   EXPECT_TRUE(apply_axis_prior(round, &slide).axis.empty());
   EXPECT_EQ(slide.axis, read);
+  // Nor does a press's face choose: up is the only axis there is.
+  Cloud face;
+  for (int i = 0; i < 200; ++i) face.points.emplace_back(0.0001 * i, 0, 0), face.normals.emplace_back(0, -1, 0);
+  JointEstimate press = joint("prismatic", tilted(Vector3d::UnitY(), Vector3d::UnitZ(), 40));
+  press.range_hi = 0.004;
+  EXPECT_TRUE(apply_axis_prior(round, &press, &face).axis.empty());
   // Gravity's up is a prior on any body: a lid's spin 10 degrees off it is up.
   JointEstimate lid = joint("revolute", -tilted(Vector3d::UnitZ(), Vector3d::UnitY(), 10));
   EXPECT_EQ(apply_axis_prior(round, &lid).axis, "up");

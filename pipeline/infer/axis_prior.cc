@@ -14,23 +14,26 @@ AxisPrior apply_axis_prior(const BodyFrame& frame, JointEstimate* joint, const C
   prior.estimated = a;
   std::vector<std::pair<std::string, Eigen::Vector3d>> axes{{"up", frame.up}};
   if (frame.found) axes.emplace_back("u", frame.u), axes.emplace_back("v", frame.v);
-  auto nearest_to = [&](const Eigen::Vector3d& d, double* cos) {
+  // The body's axis nearest `d`, and the cosine of the angle between them.
+  auto nearest_to = [&](const Eigen::Vector3d& d, double* cos_nearest) {
     const std::pair<std::string, Eigen::Vector3d>* nearest = nullptr;
-    *cos = -1;
+    *cos_nearest = -1;
     for (const auto& e : axes)
-      if (std::abs(d.dot(e.second)) > *cos) *cos = std::abs(d.dot(e.second)), nearest = &e;
+      if (std::abs(d.dot(e.second)) > *cos_nearest) *cos_nearest = std::abs(d.dot(e.second)), nearest = &e;
     return nearest;
   };
-  double best = 0;
-  const std::pair<std::string, Eigen::Vector3d>* nearest = nearest_to(a, &best);
-  prior.angle = std::acos(std::min(1.0, best));
+  double cos_estimate = 0;
+  const std::pair<std::string, Eigen::Vector3d>* nearest = nearest_to(a, &cos_estimate);
+  prior.angle = std::acos(std::min(1.0, cos_estimate));
   if (prior.angle > kAxisPriorDegrees * 3.14159265358979323846 / 180) {
+    // A press's face chooses among the body's three axes; on a round body,
+    // up is the only one, and a face would choose nothing.
     Eigen::Vector3d face;
-    if (joint->type != "prismatic" || joint->range_hi - joint->range_lo > kMaxDriftedPress || !part ||
-        !best_shown_slide(*part, &face))
+    if (!frame.found || joint->type != "prismatic" || joint->range_hi - joint->range_lo > kMaxDriftedPress ||
+        !part || !best_shown_slide(*part, &face))
       return prior;
-    double cos = 0;
-    nearest = nearest_to(face, &cos);
+    double cos_face = 0;
+    nearest = nearest_to(face, &cos_face);
     prior.by_face = true;
   }
   prior.axis = nearest->first;

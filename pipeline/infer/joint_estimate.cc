@@ -1008,10 +1008,10 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
                            std::abs(spin_of_shape.dot(j.from_part.axis.normalized())) >= kFacingCos;
   // And a turn too faint to show at all (visibility under kMinVisibility)
   // about the part's own symmetry axis, where the grip turns: a plain
-  // round knob's registration slips round that axis, its knob's hinge, and
-  // the grip's own hinge, fitted on fingers that roll as they turn, comes
-  // out tens of degrees off (seed 1's s0018 knob: the grip's axis 1.57 rad
-  // off, the part's 0.14).
+  // round knob's registration slips round that axis, which is its hinge,
+  // while the grip's own hinge, fitted on fingers that roll as they turn,
+  // comes out tens of degrees off (seed 1's s0018 knob: the grip's axis
+  // 1.57 rad off, the part's 0.14).
   const bool spin_unseen = operated && j.has_part_track && part_reliable && j.from_part.type == "revolute" &&
                            j.part_visibility < kMinVisibility && j.has_grip_track && j.from_grip.type == "revolute" &&
                            near_symmetry_axis(track.model, &spin_of_shape) &&
