@@ -9,7 +9,6 @@
 #include <thread>
 
 #include "pipeline/infer/axis_prior.h"
-#include "pipeline/infer/body_frame.h"
 #include "pipeline/infer/ego_motion.h"
 #include "pipeline/infer/grip_track.h"
 #include "pipeline/infer/hand_contacts.h"
@@ -384,7 +383,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   // the reconstruction, which follows each part's registered motion: the
   // prior moves the joints' axes, not the parts' points.
   t0 = Clock::now();
-  const BodyFrame frame = body_frame(recon[root].fused);
+  const BodyFrame& frame = recon[root].frame;  // square_the_body found it
   std::vector<AxisPrior> axis_priors(obs.parts.size());
   for (int p : moving_parts)
     if (tracks[p]) axis_priors[p] = apply_axis_prior(frame, &joints[p], &tracks[p]->model);

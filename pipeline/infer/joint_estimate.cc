@@ -994,29 +994,25 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // The grip speaks where the part's own track cannot show the motion, or
   // shows only a turn its registration can slip into, and its own motion
   // shows on the hand's shape.
-  // So is a turn its shape barely shows about a line beside the part
-  // along its symmetry axis (within kFacingCos), where the grip turns too:
-  // the registration's slip and its drift across the axis fit a knob's
-  // hinge a centimetre or two off (seed 1's s0034 left knob, 1.5 cm), and
-  // the part's track read the knob's 4.5 rad turns as noise of half a
-  // radian. Not where the grip does not turn (seed 1's s0014 crank: its
-  // grip's slide would type it).
+  // So is a turn its shape barely shows (under kSlipVisibility) about the
+  // part's own symmetry axis (within kFacingCos) or a line beside it along
+  // that axis, where the grip turns too. The registration's slip and its
+  // drift across the axis fit a knob's hinge a centimetre or two off (seed
+  // 1's s0034 left knob, 1.5 cm), and the part's track read the knob's 4.5
+  // rad turns as noise of half a radian. A turn too faint to show at all
+  // (under kMinVisibility, where the part's track is otherwise taken to
+  // show no motion) counts too: a plain round knob's registration slips
+  // round its hinge, while the grip's own hinge, fitted on fingers that
+  // roll as they turn, comes out tens of degrees off (seed 1's s0018 knob:
+  // the grip's axis 1.57 rad off, the part's 0.14). Not where the grip does
+  // not turn (seed 1's s0014 crank: its grip's slide would type it).
   Eigen::Vector3d spin_of_shape;
-  const bool slip_beside = operated && part_shows_motion && j.from_part.type == "revolute" && j.has_grip_track &&
-                           j.from_grip.type == "revolute" && j.part_visibility < kSlipVisibility && part_reliable &&
-                           near_symmetry_axis(track.model, &spin_of_shape) &&
-                           std::abs(spin_of_shape.dot(j.from_part.axis.normalized())) >= kFacingCos;
-  // And a turn too faint to show at all (visibility under kMinVisibility)
-  // about the part's own symmetry axis, where the grip turns: a plain
-  // round knob's registration slips round that axis, which is its hinge,
-  // while the grip's own hinge, fitted on fingers that roll as they turn,
-  // comes out tens of degrees off (seed 1's s0018 knob: the grip's axis
-  // 1.57 rad off, the part's 0.14).
-  const bool spin_unseen = operated && j.has_part_track && part_reliable && j.from_part.type == "revolute" &&
-                           j.part_visibility < kMinVisibility && j.has_grip_track && j.from_grip.type == "revolute" &&
-                           near_symmetry_axis(track.model, &spin_of_shape) &&
-                           std::abs(spin_of_shape.dot(j.from_part.axis.normalized())) >= kFacingCos;
-  const bool part_may_slip = !j.swing_past_slip && !along_spin && (part_shows_a_slip || slip_beside || spin_unseen);
+  const bool spins_about_its_symmetry_axis =
+      operated && j.has_part_track && part_reliable && j.from_part.type == "revolute" && j.has_grip_track &&
+      j.from_grip.type == "revolute" && j.part_visibility < kSlipVisibility &&
+      near_symmetry_axis(track.model, &spin_of_shape) &&
+      std::abs(spin_of_shape.dot(j.from_part.axis.normalized())) >= kFacingCos;
+  const bool part_may_slip = !j.swing_past_slip && !along_spin && (part_shows_a_slip || spins_about_its_symmetry_axis);
   const bool grip_decides = !j.swing_past_slip && !along_spin && j.has_grip_track && j.from_grip.type != "fixed" &&
                             j.grip_visibility >= kMinVisibility &&
                             (!part_decides || part_may_slip || (operated && turn_of_a_button && grip_slides));

@@ -110,10 +110,12 @@ bool stand_on_its_foot(const Observations& obs, int part, const std::vector<Eige
 
 bool square_the_body(PartReconstruction* recon) {
   const Cloud& c = recon->fused;
-  if (!c.has_normals() || c.size() < 50 || recon->mesh.vertices.size() < 4) return false;
   // The box's axes (body_frame.h): the upright faces' yaw, and whether most
-  // of the surface faces the box's six faces.
-  const BodyFrame frame = body_frame(c);
+  // of the surface faces the box's six faces. Kept for the joints' axis
+  // prior (axis_prior.h), whatever becomes of the mesh.
+  recon->frame = body_frame(c);
+  const BodyFrame& frame = recon->frame;
+  if (!c.has_normals() || c.size() < 50 || recon->mesh.vertices.size() < 4) return false;
   recon->box_share = frame.box_share;
   if (!frame.found) return false;
   const Eigen::Vector3d &u = frame.u, &v = frame.v, &up = frame.up;

@@ -34,6 +34,7 @@ struct PartReconstruction {
   double box_share = 0;      // square_the_body: the share of its surface facing the box's faces,
   double box_surface_share = 0;  // the share on the box's faces,
   double box_fill = 0;       // and the hull's volume over the box's
+  BodyFrame frame;           // square_the_body: the body's axes (body_frame.h), found or not
   double seconds = 0;
 };
 
