@@ -235,6 +235,52 @@ TEST(TemplatesFit, AQuickSwitchIsASwitchFrameByFrameAndBinned) {
     }
 }
 
+// A step whose switch-off lags its switch-on by about what the receptor
+// travels in a frame, its response counted in blocks of five frames (a
+// fan's flow) with noise that hides where in a block it switched: widths
+// from none to the truth's fit about as well, so the width is no parameter
+// the data pin down (BIC's log(n)) and the prior (a step as likely as a
+// binary switch, latching or not) decides. A binary switch seen frame by
+// frame shows no lag at switch-off: most widths misfit it, and it stays
+// binary.
+TEST(TemplatesFit, AHysteresisTooNarrowToSeeCostsAStepNothing) {
+  constexpr int kBin = 5;
+  const std::vector<double> s = presses(3, 150, 0, 1);
+  MappingModel step;
+  step.type = "step", step.threshold = 0.6, step.hysteresis = 0.15;
+  MappingModel binary;
+  binary.type = "binary", binary.threshold = 0.45;
+  struct Case {
+    const MappingModel& truth;
+    int bin;
+    double noise;
+    int at_least;  // of 6 seeds
+  };
+  for (const Case& c : {Case{step, kBin, 0.3, 5}, Case{binary, 1, 0.1, 6}}) {
+    const std::vector<double> u = efc::pipeline::model_profile(c.truth, s, 0.01);
+    int right = 0;
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+      MappingSeries S;
+      S.s_R = s;
+      S.allow_lag = false;
+      S.bin_frames = c.bin;
+      S.y.assign(s.size(), NAN);
+      std::mt19937 rng(seed);
+      std::normal_distribution<double> g(0, c.noise);
+      for (size_t b = 0; b + c.bin <= s.size(); b += c.bin) {
+        double sum = 0;
+        for (size_t i = b; i < b + c.bin; ++i) sum += u[i];
+        S.y[b + c.bin / 2] = 1.0 + 2.0 * sum / c.bin + g(rng);
+      }
+      const auto r = fit_mappings(S, efc::pipeline::mapping_prior(false));
+      right += fitted_type(r) == c.truth.type;
+      ASSERT_TRUE(r.best[2].valid);
+      EXPECT_LE(r.best[2].hysteresis_occam, 0) << "a mean over the widths is at most their best";
+    }
+    EXPECT_GE(right, c.at_least) << c.truth.type << ", bin " << c.bin;
+  }
+}
+
 // A lid driven open by a button (binary), its drive settling within a frame
 // or two: a critically damped response with a time constant of 0.4 frame,
 // simulated finely, to two quick presses whose crossings fall between

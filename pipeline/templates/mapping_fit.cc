@@ -352,6 +352,46 @@ bool ramp_seen(const Prep& P, double s0, double s1) {
   return s1 - s0 >= kRampFrames * travel[travel.size() / 2];
 }
 
+// A step's hysteresis as an Occam factor instead of a parameter BIC pays
+// log(n) for. BIC assumes the data pin a parameter down to 1/sqrt(n) of
+// its prior; a switch-off edge is pinned only to the receptor's travel
+// between two samples, and a press sampled coarsely (a fan's flow counted
+// every few frames) leaves any width fitting as well as none: a binary
+// switch and a step then tie, as they should, and the prior decides. So
+// the step's score is its likelihood averaged over a uniform prior on the
+// width, (0, min(30 % of the range, 80 % of the threshold's height)] (the
+// widths tried; back at rest a step is off), at its fitted threshold and
+// lags profiled, in place of the best width's likelihood and its log(n).
+constexpr int kOccamWidths = 24;
+void apply_hysteresis_occam(const Prep& P, MappingModel* step, std::vector<double>& scratch) {
+  const double widest = std::min(0.3 * (P.r_hi - P.r_lo), 0.8 * (step->threshold - P.r_lo));
+  if (!step->valid || !(widest > 0)) return;
+  const double instant_bic = P.instant_bic;  // (consider keeps the best instant model: not these)
+  std::vector<double> half_bic;
+  for (int j = 0; j < kOccamWidths; ++j) {
+    MappingModel m = *step, best;
+    m.hysteresis = widest * (j + 0.5) / kOccamWidths;
+    consider(P, model_profile_impl(m, P.s, P.band), m, 5, &best, scratch);
+    if (best.valid) half_bic.push_back(-0.5 * best.bic);
+  }
+  P.instant_bic = instant_bic;
+  if (half_bic.empty()) return;
+  const double top = *std::max_element(half_bic.begin(), half_bic.end());
+  double sum = 0;
+  for (double h : half_bic) sum += std::exp(h - top);
+  step->hysteresis_occam = std::log(sum / kOccamWidths);  // widths with no valid fit count as none
+}
+
+// The score the mapping types are chosen by: the BIC, but a step's
+// hysteresis paid for by its Occam factor instead of log(n). The evidence
+// that anything responds (delta_bic) stays the BIC's, the scale its bar
+// (TemplateOptions::min_evidence) was set on: a width free to be anything
+// also lets a step that never switches back off fit a drift for nothing.
+double choice_bic(const MappingModel& m) {
+  if (m.type != "step") return m.bic;
+  return m.bic - 2 * m.hysteresis_occam - std::log(std::max(static_cast<double>(m.pairs), 2.0));
+}
+
 }  // namespace
 
 std::vector<double> model_profile(const MappingModel& m, const std::vector<double>& s, double band) {
@@ -565,6 +605,7 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
     }
     P.taus = grid;
   }
+  apply_hysteresis_occam(P, &R.best[2], scratch);
   // Presses seen by the latching variant (for reports).
   if (R.best[1].valid) {
     MappingModel c = R.best[1];
@@ -605,14 +646,14 @@ MappingFitResult fit_mappings(const MappingSeries& series, const std::vector<dou
   }
 
   std::vector<double> prior = prior_in.size() == 5 ? prior_in : mapping_prior(false);
-  double best_bic = kInf;
+  double best_bic = kInf, best_choice = kInf;
   for (const MappingModel& m : R.best)
-    if (m.valid) best_bic = std::min(best_bic, m.bic);
+    if (m.valid) best_bic = std::min(best_bic, m.bic), best_choice = std::min(best_choice, choice_bic(m));
   R.posterior.assign(5, 0.0);
   double total = 0;
   for (int i = 0; i < 5; ++i) {
     if (!R.best[i].valid) continue;
-    R.posterior[i] = prior[i] * std::exp(-0.5 * (R.best[i].bic - best_bic));
+    R.posterior[i] = prior[i] * std::exp(-0.5 * (choice_bic(R.best[i]) - best_choice));
     total += R.posterior[i];
   }
   if (total > 0) {
@@ -631,7 +672,7 @@ nlohmann::json to_json(const MappingModel& m) {
                       {"a", m.a}, {"b", m.b}, {"rho", m.rho}, {"valid", m.valid}};
   if (m.type == "binary") j["latching"] = m.latching;
   if (m.type == "binary" || m.type == "step" || m.type == "cumulative") j["threshold"] = m.threshold;
-  if (m.type == "step") j["hysteresis"] = m.hysteresis;
+  if (m.type == "step") j["hysteresis"] = m.hysteresis, j["hysteresis_occam"] = m.hysteresis_occam;
   if (m.type == "linear") j["s0"] = m.s0, j["s1"] = m.s1;
   if (m.type == "cumulative") {
     j["saturate"] = m.saturate;

@@ -50,6 +50,10 @@ struct MappingModel {
   int pairs = 0;                         // consecutive observed samples (the innovations)
   int k = 0;                             // parameters (incl. a, b, sigma)
   double bic = 0;
+  // step: the log of its likelihood's mean over its hysteresis prior
+  // relative to the best there (<= 0); the mapping types are chosen with
+  // it in place of the hysteresis's log(n) in bic (apply_hysteresis_occam)
+  double hysteresis_occam = 0;
   bool valid = false;
 };
 
@@ -90,7 +94,7 @@ struct MappingFitResult {
   int n = 0;                       // observed samples
   double n_eff = 0;                // after the autocorrelation discount
   double delta_bic = 0;            // null BIC - best BIC (evidence that s_R explains y)
-  int best_index = -1;             // into best, by BIC + prior
+  int best_index = -1;             // into best, by BIC (a step by choice_bic) + prior
   std::vector<double> posterior;   // per entry of best (prior x exp(-BIC/2)), sums to 1
 };
 
