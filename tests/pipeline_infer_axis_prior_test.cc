@@ -154,6 +154,54 @@ TEST(PipelineInferAxisPrior, APressReadFarOffEveryAxisPressesAlongTheBodysAxisIt
   EXPECT_NEAR(slider.axis.dot(read), 1.0, 1e-12);
 }
 
+TEST(PipelineInferAxisPrior, APressTypedByItsNameAloneGoesIntoTheBodysFaceItSitsOn) {
+  const double yaw = 0.3;
+  const Cloud body = cabinet(yaw, 10);
+  const BodyFrame frame = body_frame(body);
+  ASSERT_TRUE(frame.found);
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(yaw, Vector3d::UnitZ()).toRotationMatrix();
+  // A button 5 mm proud of the front (at y = -0.25 before the yaw), a third
+  // of the way up; one on the top; one on the front's top edge, between two
+  // faces.
+  const Vector3d on_front = turn * Vector3d(0.1, -0.255, 0.25), on_top = turn * Vector3d(-0.1, 0.0, 0.705),
+                 on_edge = turn * Vector3d(0.0, -0.25, 0.7);
+  Vector3d into;
+  ASSERT_TRUE(face_it_sits_on(frame, body, on_front, &into));
+  EXPECT_NEAR(std::abs(into.dot(frame.v)), 1.0, 1e-12);
+  ASSERT_TRUE(face_it_sits_on(frame, body, on_top, &into));
+  EXPECT_NEAR(std::abs(into.dot(frame.up)), 1.0, 1e-12);
+  EXPECT_FALSE(face_it_sits_on(frame, body, on_edge, &into));
+  EXPECT_FALSE(face_it_sits_on(frame, body, on_top + 0.15 * frame.up, &into));  // on another part, 15 cm up
+  EXPECT_FALSE(face_it_sits_on(BodyFrame{}, body, on_front, &into));  // a round body has no faces
+
+  // Its press no track could type, where the hand's grip alone moved, its
+  // axis that grip's wander, 5 degrees off up: into the front, not up.
+  const Vector3d read = tilted(frame.up, frame.u, 5);
+  JointEstimate press = joint("prismatic", read);
+  press.range_hi = 0.003;
+  press.motion_untyped = true;
+  AxisPrior prior = apply_axis_prior(frame, &press, nullptr, &body, &on_front);
+  EXPECT_TRUE(prior.by_body_face);
+  EXPECT_EQ(prior.axis, "v");
+  EXPECT_NEAR(std::abs(press.axis.dot(frame.v)), 1.0, 1e-12);
+  // A press a track typed keeps the body's axis nearest its estimate.
+  JointEstimate typed = joint("prismatic", read);
+  typed.range_hi = 0.003;
+  prior = apply_axis_prior(frame, &typed, nullptr, &body, &on_front);
+  EXPECT_FALSE(prior.by_body_face);
+  EXPECT_EQ(prior.axis, "up");
+  // Its range is the hand's wander (a grip sliding 5 cm over a button whose
+  // own track showed no motion): into the face all the same.
+  JointEstimate wandered = joint("prismatic", read);
+  wandered.range_hi = 0.05;
+  wandered.motion_untyped = true;
+  EXPECT_TRUE(apply_axis_prior(frame, &wandered, nullptr, &body, &on_front).by_body_face);
+  // Not a turn, whatever typed it.
+  JointEstimate knob = joint("revolute", read);
+  knob.motion_untyped = true;
+  EXPECT_FALSE(apply_axis_prior(frame, &knob, nullptr, &body, &on_front).by_body_face);
+}
+
 TEST(PipelineInferAxisPrior, OnARoundBodyOnlyUpIsAPrior) {
   BodyFrame round;  // not found: a drum's
   // The world's x is not the body's: a slide 10 degrees off it is kept.

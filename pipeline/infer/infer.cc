@@ -68,6 +68,7 @@ ojson joint_report(const JointEstimate& j) {
   r["confidence"] = j.confidence;
   if (j.assumed_moving) r["assumed_moving"] = true;
   if (j.type_from_name) r["type_from_name"] = true;
+  if (j.motion_untyped) r["motion_untyped"] = true;
   if (j.slide_over_turn) r["slide_over_turn"] = true;
   if (j.turn_taken_for_slip) r["turn_taken_for_slip"] = true;
   if (j.slide_taken_for_slip) r["slide_taken_for_slip"] = true;
@@ -105,7 +106,8 @@ ojson joint_report(const JointEstimate& j) {
     // joint's axis would be had this track decided.
     if (a.type != "fixed") {
       f["axis"] = vec(a.axis);
-      if (a.type == "revolute") f["origin"] = vec(a.origin);
+      if (a.type == "revolute") f["origin"] = vec(a.origin), f["radius_m"] = a.radius;
+      f["range"] = {a.range_lo, a.range_hi};
     }
     f["p"] = {{"fixed", a.p_fixed}, {"prismatic", a.p_prismatic}, {"revolute", a.p_revolute}};
     // The hinge that also slides along its axis (Articulation::slide_bic),
@@ -386,7 +388,12 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   const BodyFrame& frame = recon[root].frame;  // square_the_body found it
   std::vector<AxisPrior> axis_priors(obs.parts.size());
   for (int p : moving_parts)
-    if (tracks[p]) axis_priors[p] = apply_axis_prior(frame, &joints[p], &tracks[p]->model);
+    if (tracks[p]) {
+      const Eigen::Vector3d part_at = recon[p].bounds.center();
+      const bool press = press_named(obs.parts[p].name) && recon[root].ok && recon[p].ok;
+      axis_priors[p] = apply_axis_prior(frame, &joints[p], &tracks[p]->model, press ? &recon[root].fused : nullptr,
+                                        press ? &part_at : nullptr);
+    }
   {
     ojson s = stage("axis_prior", since(t0));
     s["body_axes_found"] = frame.found;
@@ -500,6 +507,7 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
         jp["joint"]["axis_prior"] = {{"estimated_axis", vec(prior.estimated)}, {"angle_to_body_axis_rad", prior.angle}};
         if (!prior.axis.empty()) jp["joint"]["axis_prior"]["taken_onto"] = prior.axis;
         if (prior.by_face) jp["joint"]["axis_prior"]["by_face"] = true;
+        if (prior.by_body_face) jp["joint"]["axis_prior"]["by_body_face"] = true;
       }
     } else {
       jp["joint"] = {{"type", assembled[k].root ? "root" : "fixed"}, {"source", "static"}};

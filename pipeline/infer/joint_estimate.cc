@@ -509,6 +509,9 @@ bool slides_under_a_slip(const Cloud& model, const Articulation& typing, const s
 // points along its axis, which their distance from it does not spoil.
 constexpr double kHandPointNoise = 0.01;  // m: the hand detector's error
 constexpr double kHandLeverNoises = 3;
+// The hand's contacts show a motion of their own where they travel at
+// least this many detector errors (motion_untyped).
+constexpr double kUntypedHandNoises = 2;
 bool hand_has_lever(const JointEstimate& j, const std::vector<Eigen::Vector3d>& hand,
                     const std::vector<int>& frames) {
   if (j.type == "prismatic") return true;
@@ -1057,6 +1060,27 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // thousands and more). Not the rules above: they read what the
   // likelihoods cannot (a slip), not a tie.
   const std::string other_moving = type == "revolute" ? "prismatic" : type == "prismatic" ? "revolute" : "";
+  // A motion no track can type: the operated part's own track, enough
+  // points to register, shows it staying put, so it moved by less than its
+  // registration's noise (a button's press of 2 to 5 mm), and only the
+  // hand shows a motion: its grip's, one the grip's shape barely shows
+  // (under kSlipVisibility: a fingertip's cap rolling on the button), or
+  // its contacts', within twice their detector's error (kHandPointNoise)
+  // of where they started (the chord of their turn, the length of their
+  // slide). Such a track's turn or slide is the hand's, not the part's: its
+  // name types it, as it types a part nobody's track shows moving (below).
+  // Seed 1's s0001 and s0047 buttons (the grip's turns at visibility 0.10
+  // and 0.11) and s0023's, and seed 0's s0030 button (the contacts' turns
+  // about circles of 4 and 5 mm) read as hinges. A hand sliding 3 cm round
+  // a knob's rim shows its motion (ANameSettlesANearTieAndNothingMore).
+  const double hand_travel =
+      !j.has_hand_track ? 0
+      : j.from_hand.type == "revolute"
+          ? 2 * j.from_hand.radius * std::sin(0.5 * std::min(j.from_hand.range_hi - j.from_hand.range_lo, kPi))
+          : j.from_hand.range_hi - j.from_hand.range_lo;
+  j.motion_untyped = operated && part_visible && j.from_part.type == "fixed" &&
+                     ((grip_decides && j.grip_visibility < kSlipVisibility) ||
+                      (hand_decides && hand_travel < kUntypedHandNoises * kHandPointNoise));
   if (!other_moving.empty() && named == other_moving && !j.swing_past_slip && !along_spin &&
       (decider || j.grip_with_hand)) {
     // The chosen joint's likelihood over the named one's: the confidence
@@ -1065,10 +1089,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     const double p_named =
         j.grip_with_hand ? 1 - j.confidence : named == "revolute" ? decider->p_revolute : decider->p_prismatic;
     const double odds_against_name = j.confidence / std::max(p_named, 1e-300);
-    if (odds_against_name < kNamePriorOdds) {
+    if (odds_against_name < kNamePriorOdds || j.motion_untyped) {
       type = named;
       j.type_from_name = true;
-      j.confidence = kNamePriorOdds / (kNamePriorOdds + odds_against_name);
+      // Untyped: the name's prior alone, as for a part moving by assumption.
+      j.confidence = j.motion_untyped ? 0.5 * kNamePriorOdds / (kNamePriorOdds + 1)
+                                      : kNamePriorOdds / (kNamePriorOdds + odds_against_name);
     }
   }
   // A receptor the hand held (its contacts make a track) whose motion

@@ -62,6 +62,11 @@ struct JointEstimate {
   // between a turn and a slide settled by the name's prior
   // (kNamePriorOdds).
   bool type_from_name = false;
+  // An operated part whose own track shows it staying put, where only the
+  // hand shows a motion, by a track that cannot type a press of a few
+  // millimetres (its grip's shape barely showing it, or its contacts
+  // without a lever's arm): the name, where it names a joint, types it.
+  bool motion_untyped = false;
   // A part that turns about an axis through itself, typed prismatic: its
   // hinge fit explained its poses better with a slide along the same axis
   // (Articulation::slide_bic), so the turn is taken for the registration

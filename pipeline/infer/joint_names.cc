@@ -7,15 +7,15 @@
 namespace efc::pipeline {
 namespace {
 
-// Words that name one joint each (0 a slide, 1 a turn). Left out on
+// Words that name one joint each (0 a slide, 1 a turn, 2 a slide into
+// the face the part sits on: a press). Left out on
 // purpose: "switch" (rocker, toggle or slide), "handle" (a lever's or a
 // drawer's), "valve" and "tap" (turned or pulled).
 const std::map<std::string, int>& lexicon() {
   static const std::map<std::string, int> words = [] {
     std::map<std::string, int> w;
-    for (const char* s : {"button", "pushbutton", "key", "plunger", "piston", "slider", "slide", "fader", "drawer",
-                          "tray", "plus", "minus"})
-      w[s] = 0;
+    for (const char* s : {"button", "pushbutton", "key", "plunger", "piston", "plus", "minus"}) w[s] = 2;  // pressed in
+    for (const char* s : {"slider", "slide", "fader", "drawer", "tray"}) w[s] = 0;
     for (const char* s : {"knob", "dial", "crank", "wheel", "handwheel", "thumbwheel", "lever", "rocker", "toggle",
                           "paddle", "pedal", "door", "lid", "flap", "hatch"})
       w[s] = 1;
@@ -28,10 +28,13 @@ const std::map<std::string, int>& lexicon() {
 
 std::string joint_named(const std::string& part) {
   switch (last_named_in(lexicon(), part)) {
-    case 0: return "prismatic";
+    case 0:
+    case 2: return "prismatic";
     case 1: return "revolute";
     default: return "";
   }
 }
+
+bool press_named(const std::string& part) { return last_named_in(lexicon(), part) == 2; }
 
 }  // namespace efc::pipeline

@@ -21,4 +21,9 @@ namespace efc::pipeline {
 // splits and compares them.
 std::string joint_named(const std::string& part);
 
+// Whether that word names a press (a button, a key, a plunger: a slide
+// into the face the part sits on), not a slide along it or out of it (a
+// slider, a fader, a drawer).
+bool press_named(const std::string& part);
+
 }  // namespace efc::pipeline
