@@ -154,7 +154,7 @@ TEST(PipelineInferAxisPrior, APressReadFarOffEveryAxisPressesAlongTheBodysAxisIt
   EXPECT_NEAR(slider.axis.dot(read), 1.0, 1e-12);
 }
 
-TEST(PipelineInferAxisPrior, APressTypedByItsNameAloneGoesIntoTheBodysFaceItSitsOn) {
+TEST(PipelineInferAxisPrior, APressNoTrackTypedGoesIntoTheBodysFaceItSitsOn) {
   const double yaw = 0.3;
   const Cloud body = cabinet(yaw, 10);
   const BodyFrame frame = body_frame(body);

@@ -38,7 +38,6 @@ AxisPrior apply_axis_prior(const BodyFrame& frame, JointEstimate* joint, const C
   prior.estimated = a;
   std::vector<std::pair<std::string, Eigen::Vector3d>> axes{{"up", frame.up}};
   if (frame.found) axes.emplace_back("u", frame.u), axes.emplace_back("v", frame.v);
-
   // The body's axis nearest `d`, and the cosine of the angle between them.
   auto nearest_to = [&](const Eigen::Vector3d& d, double* cos_nearest) {
     const std::pair<std::string, Eigen::Vector3d>* nearest = nullptr;
@@ -50,10 +49,10 @@ AxisPrior apply_axis_prior(const BodyFrame& frame, JointEstimate* joint, const C
   double cos_estimate = 0;
   const std::pair<std::string, Eigen::Vector3d>* nearest = nearest_to(a, &cos_estimate);
   prior.angle = std::acos(std::min(1.0, cos_estimate));
-  const bool press = joint->type == "prismatic" && joint->range_hi - joint->range_lo <= kMaxDriftedPress;
+  // A press no track typed goes into the body's face it sits on, whatever
+  // its range (the hand's wander: its own track showed the press under the
+  // registration's noise).
   Eigen::Vector3d into;
-  // (Its range is the hand's wander, not the press, which its own track
-  // showed to be under the registration's noise.)
   if (joint->type == "prismatic" && joint->motion_untyped && body && part_at &&
       face_it_sits_on(frame, *body, *part_at, &into)) {
     prior.axis = into == frame.u ? "u" : into == frame.v ? "v" : "up";
@@ -61,6 +60,7 @@ AxisPrior apply_axis_prior(const BodyFrame& frame, JointEstimate* joint, const C
     joint->axis = a.dot(into) >= 0 ? into : Eigen::Vector3d(-into);
     return prior;
   }
+  const bool press = joint->type == "prismatic" && joint->range_hi - joint->range_lo <= kMaxDriftedPress;
   if (prior.angle > kAxisPriorDegrees * 3.14159265358979323846 / 180) {
     // A press's face chooses among the body's three axes; on a round body,
     // up is the only one, and a face would choose nothing.

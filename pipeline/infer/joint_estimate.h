@@ -64,8 +64,9 @@ struct JointEstimate {
   bool type_from_name = false;
   // An operated part whose own track shows it staying put, where only the
   // hand shows a motion, by a track that cannot type a press of a few
-  // millimetres (its grip's shape barely showing it, or its contacts
-  // without a lever's arm): the name, where it names a joint, types it.
+  // millimetres (its grip's, which the grip's shape barely shows, or its
+  // contacts', within two detector errors of where they began): the name,
+  // where it names a joint, types it (type_from_name where it changed it).
   bool motion_untyped = false;
   // A part that turns about an axis through itself, typed prismatic: its
   // hinge fit explained its poses better with a slide along the same axis

@@ -358,10 +358,12 @@ bool ramp_seen(const Prep& P, double s0, double s1) {
 // between two samples, and a press sampled coarsely (a fan's flow counted
 // every few frames) leaves any width fitting as well as none: a binary
 // switch and a step then tie, as they should, and the prior decides. So
-// the step's score is its likelihood averaged over a uniform prior on the
-// width, (0, min(30 % of the range, 80 % of the threshold's height)] (the
-// widths tried; back at rest a step is off), at its fitted threshold and
-// lags profiled, in place of the best width's likelihood and its log(n).
+// the step's score in the choice of mapping (choice_bic) has its
+// likelihood averaged over a uniform prior on the width, (0, min(30 % of
+// the range, 80 % of the threshold's height)] (the widths tried; back at
+// rest a step is off), at its fitted threshold with the lags profiled, in
+// place of the best width's likelihood and its log(n). Every width is
+// scored with the same k: their BICs' differences are their likelihoods'.
 constexpr int kOccamWidths = 24;
 void apply_hysteresis_occam(const Prep& P, MappingModel* step, std::vector<double>& scratch) {
   const double widest = std::min(0.3 * (P.r_hi - P.r_lo), 0.8 * (step->threshold - P.r_lo));
