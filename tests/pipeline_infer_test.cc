@@ -1928,6 +1928,14 @@ TEST(PipelineInfer, AHandsMotionWithinItsNoiseOverAStillPartIsTypedByThePartsNam
   EXPECT_LE(button.confidence, 0.5);
   // A part nobody operates is not typed by a hand.
   EXPECT_FALSE(estimate_joint(t, hand, false, nullptr, "prismatic").motion_untyped);
+  // Nor does a button too small to register (80 points) change that: the
+  // contacts' few millimetres are theirs whatever its track says.
+  PartTrack small = t;
+  small.model.points.resize(80);
+  small.model.normals.resize(80);
+  const JointEstimate tiny = estimate_joint(small, hand, true, nullptr, "prismatic");
+  EXPECT_TRUE(tiny.motion_untyped);
+  EXPECT_EQ(tiny.type, "prismatic");
   // The hand's contacts going round a 3 cm circle show their turn: the
   // name's prior weighs against the likelihoods as before.
   std::vector<Vector3d> wide = hand;

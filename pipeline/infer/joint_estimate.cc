@@ -1062,12 +1062,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   const std::string other_moving = type == "revolute" ? "prismatic" : type == "prismatic" ? "revolute" : "";
   // A motion no track can type: the operated part's own track, enough
   // points to register, shows it staying put, so it moved by less than its
-  // registration's noise (a button's press of 2 to 5 mm), and only the
-  // hand shows a motion: its grip's, one the grip's shape barely shows
-  // (under kSlipVisibility: a fingertip's cap rolling on the button), or
-  // its contacts', within twice their detector's error (kHandPointNoise)
-  // of where they started (the chord of their turn, the length of their
-  // slide). Such a track's turn or slide is the hand's, not the part's: its
+  // registration's noise (a button's press of 2 to 5 mm), and only its
+  // grip shows a motion, one the grip's shape barely shows (under
+  // kSlipVisibility: a fingertip's cap rolling on the button); or only the
+  // hand's contacts show one, within twice their detector's error
+  // (kHandPointNoise) of where they started (the chord of their turn, the
+  // length of their slide). Such a track's turn or slide is the hand's, not the part's: its
   // name types it, as it types a part nobody's track shows moving (below).
   // Seed 1's s0001 and s0047 buttons (the grip's turns at visibility 0.10
   // and 0.11) and s0023's, and seed 0's s0030 button (the contacts' turns
@@ -1078,9 +1078,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
       : j.from_hand.type == "revolute"
           ? 2 * j.from_hand.radius * std::sin(0.5 * std::min(j.from_hand.range_hi - j.from_hand.range_lo, kPi))
           : j.from_hand.range_hi - j.from_hand.range_lo;
-  j.motion_untyped = operated && part_visible && j.from_part.type == "fixed" &&
-                     ((grip_decides && j.grip_visibility < kSlipVisibility) ||
-                      (hand_decides && hand_travel < kUntypedHandNoises * kHandPointNoise));
+  // (Contacts that travelled so little are the hand's noise whatever the
+  // part's own track says: seed 0's s0052 light button, 80 points, too few
+  // to register, read as a hinge from contacts that moved 1.6 cm.)
+  j.motion_untyped = operated && ((part_visible && j.from_part.type == "fixed" && grip_decides &&
+                                   j.grip_visibility < kSlipVisibility) ||
+                                  (hand_decides && hand_travel < kUntypedHandNoises * kHandPointNoise));
   if (!other_moving.empty() && named == other_moving && !j.swing_past_slip && !along_spin &&
       (decider || j.grip_with_hand)) {
     // The chosen joint's likelihood over the named one's: the confidence

@@ -62,10 +62,10 @@ struct JointEstimate {
   // between a turn and a slide settled by the name's prior
   // (kNamePriorOdds).
   bool type_from_name = false;
-  // An operated part whose own track shows it staying put, where only the
-  // hand shows a motion, by a track that cannot type a press of a few
-  // millimetres (its grip's, which the grip's shape barely shows, or its
-  // contacts', within two detector errors of where they began): the name,
+  // An operated part whose motion only a track that cannot type a press of
+  // a few millimetres shows: its grip's, which the grip's shape barely
+  // shows, where the part's own track shows it staying put; or the hand's
+  // contacts', within two detector errors of where they began. The name,
   // where it names a joint, types it (type_from_name where it changed it).
   bool motion_untyped = false;
   // A part that turns about an axis through itself, typed prismatic: its
