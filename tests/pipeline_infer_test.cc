@@ -1795,14 +1795,15 @@ TEST(PipelineInfer, MeanTransformAndSpecNames) {
 
 // The round knob once more, its rim held and turned by a fraction of a
 // radian, the hand's contacts seen with 8 mm noise: over so short an arc
-// the noise makes a slide about as likely as the turn.
-std::vector<Vector3d> rim_held(int frames, double sweep, unsigned seed) {
+// the noise makes a slide about as likely as the turn. (`radius` and
+// `noise` for a fingertip rolling round a small circle over a button.)
+std::vector<Vector3d> rim_held(int frames, double sweep, unsigned seed, double radius = 0.06, double noise = 0.008) {
   std::vector<Vector3d> hand = no_hand(frames);
   std::mt19937 rng(seed);
-  std::normal_distribution<double> g(0, 0.008);
+  std::normal_distribution<double> g(0, noise);
   for (int f = 20; f < 100; ++f) {
     const double q = sweep * (f - 20) / 79.0;
-    hand[f] = Vector3d(0.06 * std::cos(q), 0.06 * std::sin(q), 0.02) + Vector3d(g(rng), g(rng), g(rng));
+    hand[f] = Vector3d(radius * std::cos(q), radius * std::sin(q), 0.02) + Vector3d(g(rng), g(rng), g(rng));
   }
   return hand;
 }
@@ -1908,13 +1909,7 @@ TEST(PipelineInfer, AnUnseenEffectorStandsInAsASphere) {
 TEST(PipelineInfer, AHandsMotionWithinItsNoiseOverAStillPartIsTypedByThePartsName) {
   const int frames = 120;
   const PartTrack t = turning(ring(0.03, 0.02), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0005, 4);
-  std::vector<Vector3d> hand = no_hand(frames);
-  std::mt19937 rng(3);
-  std::normal_distribution<double> g(0, 0.002);
-  for (int f = 20; f < 100; ++f) {
-    const double q = 6.0 * (f - 20) / 79.0;
-    hand[f] = Vector3d(0.006 * std::cos(q), 0.006 * std::sin(q), 0.02) + Vector3d(g(rng), g(rng), g(rng));
-  }
+  const std::vector<Vector3d> hand = rim_held(frames, 6.0, 3, 0.006, 0.002);
   const JointEstimate unnamed = estimate_joint(t, hand);
   ASSERT_EQ(unnamed.source, "hand");
   ASSERT_EQ(unnamed.type, "revolute");
