@@ -1043,6 +1043,9 @@ TEST(PipelineInfer, APartsNameNamesItsJoint) {
   EXPECT_EQ(joint_named("speed_button"), "prismatic");
   EXPECT_TRUE(press_named("speed_button"));
   EXPECT_FALSE(press_named("fanSlider"));  // slides along its face
+  EXPECT_TRUE(press_named("flow_up"));     // the button that raises the flow
+  EXPECT_TRUE(press_named("volumeDown"));
+  EXPECT_EQ(joint_named("flow_up"), "prismatic");
   EXPECT_FALSE(press_named("knob_left"));
   EXPECT_EQ(joint_named("fanSlider"), "prismatic");
   EXPECT_EQ(joint_named("knob_left"), "revolute");

@@ -8,13 +8,17 @@ namespace efc::pipeline {
 namespace {
 
 // Words that name one joint each (0 a slide, 1 a turn, 2 a slide into
-// the face the part sits on: a press). Left out on
+// the face the part sits on: a press). "up" and "down" name a press as
+// "plus" and "minus" do: the pair of buttons that raise and lower a
+// setting ("flow_up", "volume_down"; mapping_names.h reads them as steps
+// up and down too). Left out on
 // purpose: "switch" (rocker, toggle or slide), "handle" (a lever's or a
 // drawer's), "valve" and "tap" (turned or pulled).
 const std::map<std::string, int>& lexicon() {
   static const std::map<std::string, int> words = [] {
     std::map<std::string, int> w;
-    for (const char* s : {"button", "pushbutton", "key", "plunger", "piston", "plus", "minus"}) w[s] = 2;  // pressed in
+    for (const char* s : {"button", "pushbutton", "key", "plunger", "piston", "plus", "minus", "up", "down"})
+      w[s] = 2;  // pressed in
     for (const char* s : {"slider", "slide", "fader", "drawer", "tray"}) w[s] = 0;
     for (const char* s : {"knob", "dial", "crank", "wheel", "handwheel", "thumbwheel", "lever", "rocker", "toggle",
                           "paddle", "pedal", "door", "lid", "flap", "hatch"})
