@@ -120,7 +120,11 @@ ojson joint_report(const JointEstimate& j) {
   r["bic"] = {{"fixed", j.bic_fixed}, {"prismatic", j.bic_prismatic}, {"revolute", j.bic_revolute}};
   if (j.has_part_track) r["from_part"] = fits(j.from_part);
   if (j.has_hand_track) r["from_hand"] = fits(j.from_hand);
-  if (j.has_swing_track) r["from_swing"] = fits(j.from_swing);
+  if (j.has_swing_track) {
+    r["from_swing"] = fits(j.from_swing);
+    if (j.from_swing.type == "revolute")
+      r["from_swing"]["visibility"] = j.swing_visibility, r["from_swing"]["about_itself"] = j.swing_about_itself;
+  }
   if (j.has_grip_track) {
     r["from_grip"] = fits(j.from_grip);
     r["grip_visibility"] = j.grip_visibility;

@@ -893,8 +893,11 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     j.from_swing = estimate_articulation(part_samples(track, model_centre, kPartBin, &swing_frames, true, &symmetry));
     j.has_swing_track = true;
     const Articulation& swing = j.from_swing;
-    j.swing_past_slip = swing.type == "revolute" && !turns_about_itself(track.model, swing.axis, swing.origin) &&
-                        visibility(track.model, "revolute", swing.axis, swing.origin) >= kSlipVisibility;
+    if (swing.type == "revolute") {
+      j.swing_visibility = visibility(track.model, "revolute", swing.axis, swing.origin);
+      j.swing_about_itself = turns_about_itself(track.model, swing.axis, swing.origin);
+    }
+    j.swing_past_slip = swing.type == "revolute" && !j.swing_about_itself && j.swing_visibility >= kSlipVisibility;
   }
   // A receptor's slip likewise hides its press: a round button's
   // registration spins it by whole radians about its own axis, which a

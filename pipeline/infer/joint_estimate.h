@@ -91,6 +91,11 @@ struct JointEstimate {
   // swing decides (a door's plate slipping round its normal, a round
   // shade's spin), whatever the slip made of the whole track.
   bool swing_past_slip = false;
+  // The swing's hinge as its shape shows it (visibility()), and whether
+  // that hinge runs through the part (turns_about_itself()), where a swing
+  // was tried: what swing_past_slip was decided on.
+  double swing_visibility = 0;
+  bool swing_about_itself = false;
   // A receptor whose track turns about an axis through itself that its
   // shape does not show plainly, that faces along its symmetry axis, and
   // whose centre, its poses less their twist about that axis, is held one
