@@ -1943,6 +1943,59 @@ TEST(PipelineInfer, AHandsMotionWithinItsNoiseOverAStillPartIsTypedByThePartsNam
   EXPECT_EQ(lever.type, "revolute");
 }
 
+// Contacts going 3.7 cm round a hinge 2 cm beside a square button whose
+// own track, 486 points, shows it still: a turn about that hinge would
+// show plainly on the button's faces, so the motion was the hand's, not
+// the button's (seed 0's s0058 speed button: its contacts' turn of 2.4 rad
+// at 2 cm, visibility 0.93 on its shape, read as a hinge at 26 to 1). Its
+// name types it. The round knob above, turned about its own axis by the
+// same kind of contacts, shows nothing on its shape and stays a hinge.
+TEST(PipelineInfer, AHandsTurnAStillPartsShapeWouldShowIsTheHandsAlone) {
+  const int frames = 120;
+  const PartTrack t =
+      turning(box_faces(Vector3d(0.01, 0.01, 0.006), Vector3d(0, 0, 0.006)), Vector3d::UnitZ(), Vector3d::Zero(), 0.0,
+              frames, 0.0005, 4);
+  std::vector<Vector3d> hand = rim_held(frames, 2.4, 5, 0.02, 0.002);
+  for (Vector3d& h : hand)
+    if (h.allFinite()) h += Vector3d(-0.02, 0, 0);  // the circle through the button, its centre beside it
+  const JointEstimate unnamed = estimate_joint(t, hand);
+  ASSERT_EQ(unnamed.source, "hand");
+  ASSERT_EQ(unnamed.type, "revolute");
+  ASSERT_GT(unnamed.from_hand.radius, 0.015);
+  ASSERT_GT(unnamed.from_hand.p_revolute, kNamePriorOdds * unnamed.from_hand.p_prismatic);
+  EXPECT_GE(unnamed.hand_motion_visibility, kSlipVisibility);
+  EXPECT_TRUE(unnamed.motion_untyped);
+  const JointEstimate button = estimate_joint(t, hand, true, nullptr, "prismatic");
+  EXPECT_EQ(button.type, "prismatic");
+  EXPECT_TRUE(button.type_from_name);
+  EXPECT_LE(button.confidence, 0.5);
+  // The button seen from the front alone (its face: a turn about the
+  // face's normal does not show on it), the contacts turning about an
+  // upright axis across that normal: the same.
+  Cloud face;
+  const Cloud box = box_faces(Vector3d(0.01, 0.006, 0.01), Vector3d(0, 0.006, 0));
+  for (size_t i = 0; i < box.size(); ++i)
+    if (box.normals[i].y() < -0.5) face.points.push_back(box.points[i]), face.normals.push_back(box.normals[i]);
+  Cloud front = face;  // enough points to register: the face sampled finer
+  for (int k = 1; k < 4; ++k)
+    for (size_t i = 0; i < face.size(); ++i)
+      front.points.push_back(face.points[i] + Vector3d(0.0005 * k, 0, 0.0005 * k)), front.normals.push_back(face.normals[i]);
+  const PartTrack seen_from_front = turning(front, Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0005, 4);
+  Vector3d symmetry;
+  ASSERT_TRUE(near_symmetry_axis(seen_from_front.model, &symmetry));
+  ASSERT_GT(std::abs(symmetry.y()), 0.9);
+  const JointEstimate front_button = estimate_joint(seen_from_front, hand, true, nullptr, "prismatic");
+  EXPECT_TRUE(front_button.motion_untyped);
+  EXPECT_EQ(front_button.type, "prismatic");
+  // A ring turned about its own axis by such contacts: nothing on its
+  // shape would show it, and the hand's turn is the part's.
+  const PartTrack round = turning(ring(0.03, 0.02), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0005, 4);
+  const JointEstimate knob = estimate_joint(round, rim_held(frames, 2.4, 5, 0.03, 0.002), true, nullptr, "prismatic");
+  EXPECT_LT(knob.hand_motion_visibility, kSlipVisibility);
+  EXPECT_FALSE(knob.motion_untyped);
+  EXPECT_EQ(knob.type, "revolute");
+}
+
 TEST(PipelineInfer, ANameSettlesANearTieAndNothingMore) {
   const int frames = 120;
   const PartTrack t = turning(ring(0.03, 0.02), Vector3d::UnitZ(), Vector3d::Zero(), 0.0, frames, 0.0005, 4);

@@ -69,6 +69,7 @@ ojson joint_report(const JointEstimate& j) {
   if (j.assumed_moving) r["assumed_moving"] = true;
   if (j.type_from_name) r["type_from_name"] = true;
   if (j.motion_untyped) r["motion_untyped"] = true;
+  if (j.hand_motion_visibility > 0) r["hand_motion_visibility"] = j.hand_motion_visibility;
   if (j.slide_over_turn) r["slide_over_turn"] = true;
   if (j.turn_taken_for_slip) r["turn_taken_for_slip"] = true;
   if (j.slide_taken_for_slip) r["slide_taken_for_slip"] = true;

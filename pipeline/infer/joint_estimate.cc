@@ -1084,9 +1084,26 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // (Contacts that travelled so little are the hand's noise whatever the
   // part's own track says: seed 0's s0052 light button, 80 points, too few
   // to register, read as a hinge from contacts that moved 1.6 cm.)
+  // (And contacts that travelled further, about a joint the part's own
+  // shape would show plainly, where its track, enough points to register,
+  // shows it still: the motion was the hand's, not the part's. Unless the
+  // part has a near-symmetry axis its track cannot see it turn about and
+  // the contacts may be turning it there: a round knob turned by its rim,
+  // whose contacts' hinge, fitted a few millimetres off that axis, would
+  // show on its shape, and whose contacts' short arc reads as a slide
+  // across it. Contacts turning about another axis than the symmetry's (a
+  // flat button seen from the front: its face's normal) are the hand's:
+  // seed 0's s0058 speed button, its contacts' turn of 2.4 rad at 2 cm.)
+  Eigen::Vector3d symmetry_axis;
+  const bool may_turn_unseen =
+      near_symmetry_axis(track.model, &symmetry_axis) &&
+      (j.from_hand.type != "revolute" || std::abs(symmetry_axis.dot(j.from_hand.axis.normalized())) >= kFacingCos);
+  if (hand_decides && part_visible && j.from_part.type == "fixed" && !may_turn_unseen)
+    j.hand_motion_visibility = visibility(track.model, j.from_hand.type, j.from_hand.axis, j.from_hand.origin);
   j.motion_untyped = operated && ((part_visible && j.from_part.type == "fixed" && grip_decides &&
                                    j.grip_visibility < kSlipVisibility) ||
-                                  (hand_decides && hand_travel < kUntypedHandNoises * kHandPointNoise));
+                                  (hand_decides && hand_travel < kUntypedHandNoises * kHandPointNoise) ||
+                                  (hand_decides && j.hand_motion_visibility >= kSlipVisibility));
   if (!other_moving.empty() && named == other_moving && !j.swing_past_slip && !along_spin &&
       (decider || j.grip_with_hand)) {
     // The chosen joint's likelihood over the named one's: the confidence

@@ -65,9 +65,15 @@ struct JointEstimate {
   // An operated part whose motion only a track that cannot type a press of
   // a few millimetres shows: its grip's, which the grip's shape barely
   // shows, where the part's own track shows it staying put; or the hand's
-  // contacts', within two detector errors of where they began. The name,
+  // contacts', within two detector errors of where they began, or about a
+  // joint the part's shape would show plainly (hand_motion_visibility)
+  // where its track shows it still. The name,
   // where it names a joint, types it (type_from_name where it changed it).
   bool motion_untyped = false;
+  // Where the hand's contacts decide over a part whose own track shows it
+  // still: how plainly the part's shape would show the contacts' joint
+  // (visibility()); 0 elsewhere.
+  double hand_motion_visibility = 0;
   // A part that turns about an axis through itself, typed prismatic: its
   // hinge fit explained its poses better with a slide along the same axis
   // (Articulation::slide_bic), so the turn is taken for the registration
