@@ -1094,12 +1094,14 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // across it. Contacts turning about another axis than the symmetry's (a
   // flat button seen from the front: its face's normal) are the hand's:
   // seed 0's s0058 speed button, its contacts' turn of 2.4 rad at 2 cm.)
-  Eigen::Vector3d symmetry_axis;
-  const bool may_turn_unseen =
-      near_symmetry_axis(track.model, &symmetry_axis) &&
-      (j.from_hand.type != "revolute" || std::abs(symmetry_axis.dot(j.from_hand.axis.normalized())) >= kFacingCos);
-  if (hand_decides && part_visible && j.from_part.type == "fixed" && !may_turn_unseen)
-    j.hand_motion_visibility = visibility(track.model, j.from_hand.type, j.from_hand.axis, j.from_hand.origin);
+  if (hand_decides && part_visible && j.from_part.type == "fixed") {
+    Eigen::Vector3d symmetry_axis;
+    const bool may_turn_unseen =
+        near_symmetry_axis(track.model, &symmetry_axis) &&
+        (j.from_hand.type != "revolute" || std::abs(symmetry_axis.dot(j.from_hand.axis.normalized())) >= kFacingCos);
+    if (!may_turn_unseen)
+      j.hand_motion_visibility = visibility(track.model, j.from_hand.type, j.from_hand.axis, j.from_hand.origin);
+  }
   j.motion_untyped = operated && ((part_visible && j.from_part.type == "fixed" && grip_decides &&
                                    j.grip_visibility < kSlipVisibility) ||
                                   (hand_decides && hand_travel < kUntypedHandNoises * kHandPointNoise) ||
