@@ -1036,6 +1036,22 @@ TEST(PipelineInfer, AReceptorTheHandHeldMovedEvenWhenNothingShowsIt) {
   const JointEstimate effector = estimate_joint(jittered, no_hand(frames), false, nullptr, "revolute", false);
   EXPECT_EQ(effector.type, "fixed");
   EXPECT_FALSE(effector.assumed_moving);
+  // The hand's contacts reached it in two frames, too few for a track
+  // (seed 1's s0027 paddle): held all the same, so it moved by the same
+  // assumption, its geometry from its own track. Nobody's contacts, as
+  // above, and it stays fixed.
+  std::vector<Vector3d> touched = no_hand(frames);
+  touched[50] = touched[51] = Vector3d(0, 0, 0.02);
+  const JointEstimate brief = estimate_joint(jittered, touched, true, nullptr, "revolute");
+  ASSERT_FALSE(brief.has_hand_track);
+  EXPECT_EQ(brief.hand_samples, 2);
+  EXPECT_TRUE(brief.assumed_moving);
+  EXPECT_TRUE(brief.type_from_name);
+  EXPECT_NE(brief.type, "fixed");
+  EXPECT_EQ(brief.source, "part");
+  EXPECT_LE(brief.confidence, 0.5);
+  EXPECT_EQ(estimate_joint(jittered, no_hand(frames), true, nullptr, "revolute").type, "fixed");
+  EXPECT_EQ(estimate_joint(jittered, touched, false, nullptr, "revolute").type, "fixed");  // not a receptor
 }
 
 TEST(PipelineInfer, APartsNameNamesItsJoint) {

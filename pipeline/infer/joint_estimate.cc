@@ -1137,9 +1137,14 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // where nothing says whether it was held: its function needs it movable
   // (a receptor's role: someone operates it), so it moves by the same
   // assumption, its geometry from its own track.
+  // So does a receptor the hand's contacts reached in too few frames to
+  // make a track (seed 1's s0027 paddle on a fridge door, touched in 2):
+  // the hand held it all the same. Only a receptor no contact reached
+  // stays fixed.
   const bool held_unrecorded = operated && !hand_recorded && j.has_part_track && part_reliable;
+  const bool held_briefly = operated && !j.has_hand_track && j.hand_samples > 0 && j.has_part_track && part_reliable;
   bool geometry_from_part = part_decides;
-  if (type == "fixed" && (j.has_hand_track || held_unrecorded) &&
+  if (type == "fixed" && (j.has_hand_track || held_unrecorded || held_briefly) &&
       std::isfinite(std::min(j.bic_revolute, j.bic_prismatic))) {
     std::string assumed = j.bic_revolute <= j.bic_prismatic ? "revolute" : "prismatic";
     if (named == "revolute" || named == "prismatic") assumed = named;
