@@ -154,7 +154,7 @@ TEST(PipelineInferAxisPrior, APressReadFarOffEveryAxisPressesAlongTheBodysAxisIt
   EXPECT_NEAR(slider.axis.dot(read), 1.0, 1e-12);
 }
 
-TEST(PipelineInferAxisPrior, APressNoTrackTypedGoesIntoTheBodysFaceItSitsOn) {
+TEST(PipelineInferAxisPrior, APressOrAKnobNoTrackTypedGoesIntoTheBodysFaceItSitsOn) {
   const double yaw = 0.3;
   const Cloud body = cabinet(yaw, 10);
   const BodyFrame frame = body_frame(body);
@@ -196,10 +196,25 @@ TEST(PipelineInferAxisPrior, APressNoTrackTypedGoesIntoTheBodysFaceItSitsOn) {
   wandered.range_hi = 0.05;
   wandered.motion_untyped = true;
   EXPECT_TRUE(apply_axis_prior(frame, &wandered, nullptr, &body, &on_front).by_body_face);
-  // Not a turn, whatever typed it.
+  // A knob's turn no track typed, the grip's turn a fingertip's wander 5
+  // degrees off up (seed 0's s0039 dial): about the front's normal too
+  // (efc infer passes the body for parts named for a press or a knob,
+  // face_turn_named). A lever, named for a turn along its face, gets no
+  // body: the body's axis nearest its estimate.
   JointEstimate knob = joint("revolute", read);
   knob.motion_untyped = true;
-  EXPECT_FALSE(apply_axis_prior(frame, &knob, nullptr, &body, &on_front).by_body_face);
+  prior = apply_axis_prior(frame, &knob, nullptr, &body, &on_front);
+  EXPECT_TRUE(prior.by_body_face);
+  EXPECT_EQ(prior.axis, "v");
+  EXPECT_NEAR(std::abs(knob.axis.dot(frame.v)), 1.0, 1e-12);
+  JointEstimate lever = joint("revolute", read);
+  lever.motion_untyped = true;
+  prior = apply_axis_prior(frame, &lever);
+  EXPECT_FALSE(prior.by_body_face);
+  EXPECT_EQ(prior.axis, "up");
+  // A knob a track typed keeps the body's axis nearest its estimate.
+  JointEstimate turned = joint("revolute", read);
+  EXPECT_EQ(apply_axis_prior(frame, &turned, nullptr, &body, &on_front).axis, "up");
 }
 
 TEST(PipelineInferAxisPrior, OnARoundBodyOnlyUpIsAPrior) {

@@ -1063,6 +1063,11 @@ TEST(PipelineInfer, APartsNameNamesItsJoint) {
   EXPECT_TRUE(press_named("volumeDown"));
   EXPECT_EQ(joint_named("flow_up"), "prismatic");
   EXPECT_FALSE(press_named("knob_left"));
+  EXPECT_TRUE(face_turn_named("knob_left"));  // turned about the face it stands out of
+  EXPECT_TRUE(face_turn_named("Dial"));
+  EXPECT_FALSE(face_turn_named("lever"));     // about an axis along it
+  EXPECT_FALSE(face_turn_named("thumbwheel"));
+  EXPECT_FALSE(face_turn_named("button"));
   EXPECT_EQ(joint_named("fanSlider"), "prismatic");
   EXPECT_EQ(joint_named("knob_left"), "revolute");
   EXPECT_EQ(joint_named("Rocker"), "revolute");

@@ -49,12 +49,11 @@ AxisPrior apply_axis_prior(const BodyFrame& frame, JointEstimate* joint, const C
   double cos_estimate = 0;
   const std::pair<std::string, Eigen::Vector3d>* nearest = nearest_to(a, &cos_estimate);
   prior.angle = std::acos(std::min(1.0, cos_estimate));
-  // A press no track typed goes into the body's face it sits on, whatever
-  // its range (the hand's wander: its own track showed the press under the
-  // registration's noise).
+  // A press or a knob no track typed goes into the body's face it sits on,
+  // whatever its range (the hand's wander: its own track showed the press
+  // under the registration's noise, or still where the hand turned it).
   Eigen::Vector3d into;
-  if (joint->type == "prismatic" && joint->motion_untyped && body && part_at &&
-      face_it_sits_on(frame, *body, *part_at, &into)) {
+  if (joint->motion_untyped && body && part_at && face_it_sits_on(frame, *body, *part_at, &into)) {
     prior.axis = into == frame.u ? "u" : into == frame.v ? "v" : "up";
     prior.by_body_face = true;
     joint->axis = a.dot(into) >= 0 ? into : Eigen::Vector3d(-into);

@@ -31,7 +31,11 @@
 // goes into the face of the body it sits on: the body's axis most of the
 // body's surface nearest the part faces along (face_it_sits_on), where the
 // body is square and that surface says. (A slider's slide goes along the
-// face: not the name of a press.)
+// face: not the name of a press.) So does a knob's or a dial's turn
+// (face_turn_named) where no track typed it: the grip's turn there is a
+// fingertip's wander, tens of degrees off, while a knob turns about the
+// normal of the face it stands out of (seed 0's s0005 and s0039 dials,
+// their grips' turns taken onto "up", 1.57 rad off).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -55,7 +59,7 @@ constexpr double kFaceReach = 0.1;  // m
 struct AxisPrior {
   std::string axis;  // the body's axis the joint was taken onto: "u", "v", "up"; empty when kept
   bool by_face = false;  // a press, taken onto the axis nearest its face's normal
-  bool by_body_face = false;  // a press no track typed, taken into the body's face it sits on
+  bool by_body_face = false;  // a press or knob no track typed, taken into the body's face it sits on
   Eigen::Vector3d estimated = Eigen::Vector3d::UnitZ();  // the joint's axis as estimated
   double angle = 0;  // rad, between the estimate and the body's axis nearest it
 };
@@ -69,7 +73,7 @@ bool face_it_sits_on(const BodyFrame& frame, const Cloud& body, const Eigen::Vec
 // Nothing for a fixed joint. `part`: the part's model with its normals
 // (object frame; may be null). `body`: the body's fused surface with its
 // normals, and `part_at` the part's centre (object frame, at rest), given
-// for a part named for a press (may be null).
+// for a part named for a press or a knob (may be null).
 AxisPrior apply_axis_prior(const BodyFrame& frame, JointEstimate* joint, const Cloud* part = nullptr,
                            const Cloud* body = nullptr, const Eigen::Vector3d* part_at = nullptr);
 

@@ -395,7 +395,8 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   for (int p : moving_parts)
     if (tracks[p]) {
       const Eigen::Vector3d part_at = recon[p].bounds.center();
-      const bool press = press_named(obs.parts[p].name) && recon[root].ok && recon[p].ok;
+      const bool press = (press_named(obs.parts[p].name) || face_turn_named(obs.parts[p].name)) && recon[root].ok &&
+                         recon[p].ok;
       axis_priors[p] = apply_axis_prior(frame, &joints[p], &tracks[p]->model, press ? &recon[root].fused : nullptr,
                                         press ? &part_at : nullptr);
     }

@@ -26,4 +26,9 @@ std::string joint_named(const std::string& part);
 // slider, a fader, a drawer).
 bool press_named(const std::string& part);
 
+// Whether that word names a turn about the normal of the face the part
+// stands out of (a knob, a dial), not about an axis along it (a lever, a
+// rocker, a door) or across it (a thumbwheel).
+bool face_turn_named(const std::string& part);
+
 }  // namespace efc::pipeline
