@@ -1066,7 +1066,7 @@ TEST(PipelineInfer, APartsNameNamesItsJoint) {
   EXPECT_TRUE(face_turn_named("knob_left"));  // turned about the face it stands out of
   EXPECT_TRUE(face_turn_named("Dial"));
   EXPECT_FALSE(face_turn_named("lever"));     // about an axis along it
-  EXPECT_FALSE(face_turn_named("thumbwheel"));
+  EXPECT_FALSE(face_turn_named("thumbwheel"));  // edge out, its axis along the face
   EXPECT_FALSE(face_turn_named("button"));
   EXPECT_EQ(joint_named("fanSlider"), "prismatic");
   EXPECT_EQ(joint_named("knob_left"), "revolute");

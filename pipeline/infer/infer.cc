@@ -395,10 +395,13 @@ int infer_sequence(const std::string& sequence_dir, const InferOptions& options,
   for (int p : moving_parts)
     if (tracks[p]) {
       const Eigen::Vector3d part_at = recon[p].bounds.center();
-      const bool press = (press_named(obs.parts[p].name) || face_turn_named(obs.parts[p].name)) && recon[root].ok &&
-                         recon[p].ok;
-      axis_priors[p] = apply_axis_prior(frame, &joints[p], &tracks[p]->model, press ? &recon[root].fused : nullptr,
-                                        press ? &part_at : nullptr);
+      // A press goes into the face it sits on, a knob turns about its
+      // normal: the body's surface there says which way that is.
+      const bool about_its_face = (press_named(obs.parts[p].name) || face_turn_named(obs.parts[p].name)) &&
+                                  recon[root].ok && recon[p].ok;
+      axis_priors[p] = apply_axis_prior(frame, &joints[p], &tracks[p]->model,
+                                        about_its_face ? &recon[root].fused : nullptr,
+                                        about_its_face ? &part_at : nullptr);
     }
   {
     ojson s = stage("axis_prior", since(t0));

@@ -27,8 +27,8 @@ std::string joint_named(const std::string& part);
 bool press_named(const std::string& part);
 
 // Whether that word names a turn about the normal of the face the part
-// stands out of (a knob, a dial), not about an axis along it (a lever, a
-// rocker, a door) or across it (a thumbwheel).
+// stands out of (a knob, a dial), not about an axis along that face (a
+// lever, a rocker, a door, a thumbwheel standing edge out).
 bool face_turn_named(const std::string& part);
 
 }  // namespace efc::pipeline
