@@ -1094,7 +1094,8 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // across it. Contacts turning about another axis than the symmetry's (a
   // flat button seen from the front: its face's normal) are the hand's:
   // seed 0's s0058 speed button, its contacts' turn of 2.4 rad at 2 cm.)
-  if (hand_decides && part_visible && j.from_part.type == "fixed") {
+  const bool part_still = part_visible && j.from_part.type == "fixed";  // enough points, and they stayed put
+  if (hand_decides && part_still) {
     Eigen::Vector3d symmetry_axis;
     const bool may_turn_unseen =
         near_symmetry_axis(track.model, &symmetry_axis) &&
@@ -1102,7 +1103,7 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
     if (!may_turn_unseen)
       j.hand_motion_visibility = visibility(track.model, j.from_hand.type, j.from_hand.axis, j.from_hand.origin);
   }
-  j.motion_untyped = operated && ((part_visible && j.from_part.type == "fixed" && grip_decides &&
+  j.motion_untyped = operated && ((part_still && grip_decides &&
                                    j.grip_visibility < kSlipVisibility) ||
                                   (hand_decides && hand_travel < kUntypedHandNoises * kHandPointNoise) ||
                                   (hand_decides && j.hand_motion_visibility >= kSlipVisibility));
@@ -1141,10 +1142,12 @@ JointEstimate estimate_joint(const PartTrack& track, const std::vector<Eigen::Ve
   // make a track (seed 1's s0027 paddle on a fridge door, touched in 2):
   // the hand held it all the same. Only a receptor no contact reached
   // stays fixed.
-  const bool held_unrecorded = operated && !hand_recorded && j.has_part_track && part_reliable;
-  const bool held_briefly = operated && !j.has_hand_track && j.hand_samples > 0 && j.has_part_track && part_reliable;
+  // Both held without a track of the hand's: its own track gives the
+  // geometry.
+  const bool held_without_hand_track =
+      operated && (!hand_recorded || j.hand_samples > 0) && j.has_part_track && part_reliable;
   bool geometry_from_part = part_decides;
-  if (type == "fixed" && (j.has_hand_track || held_unrecorded || held_briefly) &&
+  if (type == "fixed" && (j.has_hand_track || held_without_hand_track) &&
       std::isfinite(std::min(j.bic_revolute, j.bic_prismatic))) {
     std::string assumed = j.bic_revolute <= j.bic_prismatic ? "revolute" : "prismatic";
     if (named == "revolute" || named == "prismatic") assumed = named;
